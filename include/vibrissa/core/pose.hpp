@@ -1,0 +1,34 @@
+#pragma once
+// Placement of the whisker-centred frame B in the world frame W (docs/conventions.md).
+//   R_WB = Rz(theta) · Ry(-phi) · Rx(zeta)
+// theta: protraction (azimuth) about world +z [rad]; phi: elevation, positive toward world +z [rad];
+// zeta: roll about the whisker's own x axis [rad]. With all three zero the whisker emerges along world +x
+// and curves (concave) toward world +y.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace vibrissa {
+
+struct Pose {
+  Eigen::Vector3d p_W_base = Eigen::Vector3d::Zero();  ///< base point in world [m]
+  double theta = 0.0;                                   ///< protraction [rad]
+  double phi = 0.0;                                     ///< elevation [rad]
+  double zeta = 0.0;                                    ///< roll [rad]
+};
+
+Eigen::Matrix3d rotation_x(double angle);
+Eigen::Matrix3d rotation_y(double angle);
+Eigen::Matrix3d rotation_z(double angle);
+
+/// R_WB from the pose angles.
+Eigen::Matrix3d rotation_from_angles(double theta, double phi, double zeta);
+/// The pose angles of a rotation R_WB (inverse of rotation_from_angles; phi in [-pi/2, pi/2]).
+Pose pose_from_rotation(const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_W_base);
+
+/// Throws std::invalid_argument naming `field` unless every component is finite.
+void require_finite(const Eigen::Vector3d& v, const char* field);
+void require_finite(double v, const char* field);
+void require_positive(double v, const char* field);
+void validate(const Pose& pose);
+
+}  // namespace vibrissa

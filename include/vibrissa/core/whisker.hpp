@@ -1,0 +1,118 @@
+#pragma once
+// The whisker model (spec §2.1): an intrinsically curved, tapered rod discretised as N rigid links joined by
+// bending/torsion springs. A Whisker is immutable after construction and safe to share between threads;
+// the forward model (chain.hpp) reads it and writes only into caller-owned storage.
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vibrissa/core/pose.hpp"
+
+namespace vibrissa {
+
+/// How the continuous rod is discretised into joints (docs/conventions.md, "Discretisation").
+enum class Scheme {
+  second_order,  ///< default: trapezoidal joint compliance, error O(1/N^2)
+  paper,         ///< the published chain: each joint rotated by its own moment times the link length, O(1/N)
+};
+
+/// Boundary condition at the follicle (spec §2.1).
+enum class BaseJoint {
+  elastic,  ///< paper scheme: the base joint has the spring of a whole link; second-order: see docs
+  rigid,    ///< the first link is clamped in the follicle
+};
+
+/// Everything about a whisker except its rest shape. Defaults are the spec's (§2.1).
+struct WhiskerProperties {
+  int links = 100;                     ///< N, number of rigid links
+  double base_radius = 100e-6;         ///< [m]
+  double taper_ratio = 15.0;           ///< base radius / tip radius (linear taper in arc length)
+  std::vector<double> radii;           ///< optional per-node radii [m], base to tip, equally spaced in s
+  double youngs_modulus = 3.3e9;       ///< [Pa]
+  std::vector<double> youngs_moduli;   ///< optional per-node E [Pa], base to tip, equally spaced in s
+  double poisson_ratio = 0.38;         ///< G = E / (2 (1 + nu)), eq. (2)
+  BaseJoint base = BaseJoint::elastic;
+  std::optional<double> base_stiffness;  ///< optional follicle spring [N·m/rad] in series at the base
+  Scheme scheme = Scheme::second_order;
+};
+
+void validate(const WhiskerProperties& props);
+
+class Whisker {
+ public:
+  /// Rest shape from 3D points, base first (>= 3). Without a pose the points are in world coordinates and
+  /// fix the placement; with a pose only their shape is used and the whisker frame is placed by the pose.
+  static Whisker from_points(const std::vector<Eigen::Vector3d>& points, const WhiskerProperties& props,
+                             const std::optional<Pose>& pose = std::nullopt);
+  /// Planar rest shape y = a x^2 in the whisker frame, arc length `length` [m], a [1/m].
+  static Whisker from_parabola(double length, double a, const WhiskerProperties& props, const Pose& pose = {});
+  /// Planar rest shape y = A x^3 + B x^2 in the whisker frame, A [1/m^2], B [1/m].
+  static Whisker from_cubic(double length, double A, double B, const WhiskerProperties& props,
+                            const Pose& pose = {});
+
+  /// The same whisker placed elsewhere (the rest shape in B is unchanged).
+  [[nodiscard]] Whisker placed(const Pose& pose) const;
+
+  // --- geometry in the whisker-centred frame B ---
+  [[nodiscard]] int links() const { return static_cast<int>(link_length_.size()); }
+  [[nodiscard]] double length() const { return arc_.back(); }
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& rest_nodes_B() const { return nodes_B_; }
+  [[nodiscard]] const std::vector<double>& link_lengths() const { return link_length_; }
+  /// Arc length of each node from the base [m] (size N+1).
+  [[nodiscard]] const std::vector<double>& node_arc_lengths() const { return arc_; }
+  /// Rest orientation of link i relative to link i-1 (link 0: relative to B).
+  [[nodiscard]] const std::vector<Eigen::Matrix3d>& rest_joint_rotations() const { return Q_rest_; }
+  /// Rest orientation of link i in B (columns: tangent, normal, binormal; parallel-transported).
+  [[nodiscard]] const std::vector<Eigen::Matrix3d>& rest_link_frames_B() const { return R_link_B_; }
+  [[nodiscard]] const std::vector<double>& node_radii() const { return radius_; }
+  [[nodiscard]] const std::vector<double>& node_youngs_moduli() const { return youngs_; }
+  [[nodiscard]] const WhiskerProperties& properties() const { return props_; }
+
+  /// Index of the link that holds arc length s, and the distance h of s past that link's first node.
+  /// Beyond the tip the last link is extended straight (used by solvers to detect slip-off).
+  void locate(double s, int& link, double& h) const;
+  [[nodiscard]] Eigen::Vector3d rest_point_B(double s) const;
+  [[nodiscard]] Eigen::Vector3d rest_point_W(double s) const { return to_world(rest_point_B(s)); }
+
+  // --- joint compliances (see chain.hpp) ---
+  /// Bending compliance per unit weight at joint j: 1 / (E I) [1/(N·m^2)].
+  [[nodiscard]] const std::vector<double>& bending_compliance() const { return cb_; }
+  /// Torsional compliance per unit weight at joint j: 1 / (G J) [1/(N·m^2)].
+  [[nodiscard]] const std::vector<double>& torsion_compliance() const { return ct_; }
+  /// Arc-length weight of joint j when the load lies distal to its link [m].
+  [[nodiscard]] const std::vector<double>& joint_weight() const { return weight_; }
+  /// Weight of the last loaded joint j for a load h past node j: weight_at_load_base + h * weight_at_load_slope.
+  [[nodiscard]] double loaded_joint_weight_base(int j) const { return weight_load_base_[static_cast<std::size_t>(j)]; }
+  [[nodiscard]] double loaded_joint_weight_slope() const { return weight_load_slope_; }
+  /// Extra bending compliance of the follicle spring at joint 0 [1/(N·m)] (0 if none).
+  [[nodiscard]] double base_extra_compliance() const { return base_extra_compliance_; }
+  /// Bending stiffness at the base E I_0 [N·m^2] (scales every solve).
+  [[nodiscard]] double base_bending_stiffness() const { return 1.0 / cb_.front(); }
+
+  // --- placement ---
+  [[nodiscard]] const Eigen::Matrix3d& R_WB() const { return R_WB_; }
+  [[nodiscard]] const Eigen::Vector3d& p_W_base() const { return p_W_base_; }
+  [[nodiscard]] Pose pose() const { return pose_from_rotation(R_WB_, p_W_base_); }
+  [[nodiscard]] Eigen::Vector3d to_world(const Eigen::Vector3d& p_B) const { return p_W_base_ + R_WB_ * p_B; }
+  [[nodiscard]] Eigen::Vector3d to_body(const Eigen::Vector3d& p_W) const {
+    return R_WB_.transpose() * (p_W - p_W_base_);
+  }
+
+ private:
+  Whisker() = default;
+  void build(std::vector<Eigen::Vector3d> nodes_B, const WhiskerProperties& props);
+
+  WhiskerProperties props_;
+  std::vector<Eigen::Vector3d> nodes_B_;
+  std::vector<double> link_length_, arc_;
+  std::vector<Eigen::Matrix3d> Q_rest_, R_link_B_;
+  std::vector<double> radius_, youngs_;
+  std::vector<double> cb_, ct_, weight_, weight_load_base_;
+  double weight_load_slope_ = 0.0;
+  double base_extra_compliance_ = 0.0;
+  Eigen::Matrix3d R_WB_ = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p_W_base_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace vibrissa

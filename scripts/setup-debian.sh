@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs every Debian package vibrissa needs to build, test, benchmark and plot.
+# Usage: sudo-less root or sudo: bash scripts/setup-debian.sh
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev            # linear algebra (fixed-size 3x3, small dense solves)
+  nlohmann-json3-dev       # JSON case/result files
+  libcli11-dev             # command-line parsing
+  libgtest-dev libgmock-dev  # unit tests
+  libbenchmark-dev         # micro-benchmarks
+  libhdf5-dev              # HDF5 trial / array output
+  libmatio-dev             # MATLAB .mat trial input
+  pybind11-dev python3-dev python3-pybind11   # Python extension
+  python3-numpy python3-matplotlib python3-pytest python3-h5py
+  ffmpeg                   # MP4 animations
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+echo "vibrissa: all Debian packages present"

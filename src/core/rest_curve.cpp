@@ -1,0 +1,169 @@
+#include "vibrissa/core/rest_curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+
+namespace vibrissa {
+namespace {
+
+// 5-point Gauss-Legendre on [a, b] of |dc|.
+double speed_integral(const std::function<Eigen::Vector3d(double)>& dc, double a, double b) {
+  static constexpr double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                                  0.9061798459386640};
+  static constexpr double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                                  0.2369268850561891, 0.2369268850561891};
+  const double half = 0.5 * (b - a), mid = 0.5 * (a + b);
+  double sum = 0.0;
+  for (int i = 0; i < 5; ++i) sum += w[i] * dc(mid + half * x[i]).norm();
+  return half * sum;
+}
+
+// Natural cubic spline through (t_i, y_i): second derivatives m_i.
+std::vector<double> natural_spline_moments(const std::vector<double>& t, const std::vector<double>& y) {
+  const std::size_t n = t.size();
+  std::vector<double> m(n, 0.0);
+  if (n < 3) return m;
+  std::vector<double> a(n, 0.0), b(n, 0.0), c(n, 0.0), d(n, 0.0);
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const double h0 = t[i] - t[i - 1], h1 = t[i + 1] - t[i];
+    a[i] = h0;
+    b[i] = 2.0 * (h0 + h1);
+    c[i] = h1;
+    d[i] = 6.0 * ((y[i + 1] - y[i]) / h1 - (y[i] - y[i - 1]) / h0);
+  }
+  // Thomas algorithm on rows 1..n-2 (m_0 = m_{n-1} = 0).
+  for (std::size_t i = 2; i + 1 < n; ++i) {
+    const double f = a[i] / b[i - 1];
+    b[i] -= f * c[i - 1];
+    d[i] -= f * d[i - 1];
+  }
+  for (std::size_t i = n - 2; i >= 1; --i) {
+    m[i] = (d[i] - c[i] * m[i + 1]) / b[i];
+    if (i == 1) break;
+  }
+  return m;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> resample_by_arc_length(const std::function<Eigen::Vector3d(double)>& c,
+                                                    const std::function<Eigen::Vector3d(double)>& dc,
+                                                    double t_end, int links, double* total_length) {
+  const int panels = std::max(400, 40 * links);
+  std::vector<double> t(static_cast<std::size_t>(panels) + 1), cum(t.size(), 0.0);
+  for (int i = 0; i <= panels; ++i) t[i] = t_end * i / panels;
+  for (int i = 0; i < panels; ++i) cum[i + 1] = cum[i] + speed_integral(dc, t[i], t[i + 1]);
+  const double length = (total_length && *total_length > 0.0) ? *total_length : cum.back();
+  if (length > cum.back() * (1.0 + 1e-12)) throw std::logic_error("resample_by_arc_length: curve too short");
+  if (total_length) *total_length = length;
+
+  std::vector<Eigen::Vector3d> nodes(static_cast<std::size_t>(links) + 1);
+  nodes[0] = c(0.0);
+  for (int i = 1; i <= links; ++i) {
+    const double s = length * i / links;
+    auto it = std::upper_bound(cum.begin(), cum.end(), s);
+    std::size_t p = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - cum.begin()) - 1);
+    p = std::min(p, static_cast<std::size_t>(panels - 1));
+    const double frac = (s - cum[p]) / std::max(cum[p + 1] - cum[p], 1e-300);
+    double tt = t[p] + frac * (t[p + 1] - t[p]);
+    for (int iter = 0; iter < 8; ++iter) {  // Newton on arc length within the panel
+      const double f = cum[p] + speed_integral(dc, t[p], tt) - s;
+      const double speed = dc(tt).norm();
+      if (speed <= 0.0) break;
+      const double step = f / speed;
+      tt -= step;
+      if (std::abs(step) < 1e-15 * std::max(1.0, std::abs(tt))) break;
+    }
+    nodes[static_cast<std::size_t>(i)] = c(tt);
+  }
+  return nodes;
+}
+
+std::vector<Eigen::Vector3d> resample_points(const std::vector<Eigen::Vector3d>& points, int links,
+                                             Eigen::Vector3d* tangent0) {
+  const std::size_t n = points.size();
+  std::vector<double> t(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) {
+    const double chord = (points[i] - points[i - 1]).norm();
+    if (!(chord > 0.0))
+      throw std::invalid_argument("whisker.points: consecutive points " + std::to_string(i - 1) + " and " +
+                                  std::to_string(i) + " coincide");
+    t[i] = t[i - 1] + chord;
+  }
+  std::array<std::vector<double>, 3> y, m;
+  for (int d = 0; d < 3; ++d) {
+    y[d].resize(n);
+    for (std::size_t i = 0; i < n; ++i) y[d][i] = points[i][d];
+    m[d] = natural_spline_moments(t, y[d]);
+  }
+  auto interval = [&](double tt) {
+    auto it = std::upper_bound(t.begin(), t.end(), tt);
+    std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - t.begin()) - 1);
+    return std::min(i, n - 2);
+  };
+  auto eval = [&](double tt) {
+    const std::size_t i = interval(tt);
+    const double h = t[i + 1] - t[i], A = (t[i + 1] - tt) / h, B = (tt - t[i]) / h;
+    Eigen::Vector3d p;
+    for (int d = 0; d < 3; ++d)
+      p[d] = A * y[d][i] + B * y[d][i + 1] + ((A * A * A - A) * m[d][i] + (B * B * B - B) * m[d][i + 1]) * h * h / 6.0;
+    return p;
+  };
+  auto deriv = [&](double tt) {
+    const std::size_t i = interval(tt);
+    const double h = t[i + 1] - t[i], A = (t[i + 1] - tt) / h, B = (tt - t[i]) / h;
+    Eigen::Vector3d v;
+    for (int d = 0; d < 3; ++d)
+      v[d] = (y[d][i + 1] - y[d][i]) / h - (3 * A * A - 1) * h / 6.0 * m[d][i] + (3 * B * B - 1) * h / 6.0 * m[d][i + 1];
+    return v;
+  };
+  if (tangent0) *tangent0 = deriv(0.0).normalized();
+  return resample_by_arc_length(eval, deriv, t.back(), links);
+}
+
+std::vector<Eigen::Vector3d> planar_polynomial_nodes(double length, double A, double B, int links) {
+  auto c = [&](double x) { return Eigen::Vector3d(x, A * x * x * x + B * x * x, 0.0); };
+  auto dc = [&](double x) { return Eigen::Vector3d(1.0, 3.0 * A * x * x + 2.0 * B * x, 0.0); };
+  double L = length;  // arc length >= x, so x in [0, length] always suffices
+  return resample_by_arc_length(c, dc, length, links, &L);
+}
+
+Eigen::Matrix3d whisker_frame(const std::vector<Eigen::Vector3d>& nodes, const Eigen::Vector3d& tangent0) {
+  const Eigen::Vector3d x0 = tangent0.normalized();
+  const std::size_t n = nodes.size();
+  // §2.1: the x-y plane is the best-fit plane of the proximal 70 % of arc length (nodes are equally spaced).
+  const std::size_t count = std::max<std::size_t>(3, static_cast<std::size_t>(std::floor(0.7 * double(n - 1))) + 1);
+  Eigen::MatrixXd X(static_cast<Eigen::Index>(std::min(count, n)), 3);
+  for (Eigen::Index i = 0; i < X.rows(); ++i) X.row(i) = nodes[static_cast<std::size_t>(i)].transpose();
+  const Eigen::RowVector3d centroid = X.colwise().mean();
+  X.rowwise() -= centroid;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(X, Eigen::ComputeThinV);
+  const Eigen::Vector3d sv = svd.singularValues();
+  Eigen::Vector3d normal = svd.matrixV().col(2);
+  if (!(sv(1) > 1e-9 * std::max(sv(0), 1e-300))) {
+    // Straight (collinear) proximal part: no plane is defined; take z as close to +z of the input frame as
+    // possible (or +y if the whisker is vertical). Documented in docs/conventions.md.
+    Eigen::Vector3d up = std::abs(x0.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitY();
+    normal = (up - up.dot(x0) * x0).normalized();
+  }
+  Eigen::Vector3d x = (x0 - x0.dot(normal) * normal).normalized();
+  Eigen::Vector3d z = normal;
+  Eigen::Vector3d y = z.cross(x);
+  double mean_y = 0.0;
+  for (const auto& p : nodes) mean_y += (p - nodes.front()).dot(y);
+  if (mean_y < 0.0) {  // concave toward +y
+    y = -y;
+    z = -z;
+  }
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = y;
+  R.col(2) = z;
+  return R;
+}
+
+}  // namespace vibrissa

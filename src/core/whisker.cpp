@@ -1,0 +1,197 @@
+#include "vibrissa/core/whisker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+
+#include "vibrissa/core/rest_curve.hpp"
+
+namespace vibrissa {
+namespace {
+
+[[noreturn]] void fail(const std::string& what) { throw std::invalid_argument(what); }
+
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// Value at fraction u in [0, 1] of samples equally spaced base to tip (piecewise linear).
+double sample_profile(const std::vector<double>& values, double u) {
+  const double pos = std::clamp(u, 0.0, 1.0) * double(values.size() - 1);
+  const std::size_t i = std::min(static_cast<std::size_t>(pos), values.size() - 2);
+  const double f = pos - double(i);
+  return (1.0 - f) * values[i] + f * values[i + 1];
+}
+
+Eigen::Matrix3d minimal_rotation(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  return Eigen::Quaterniond::FromTwoVectors(from, to).toRotationMatrix();
+}
+
+}  // namespace
+
+void validate(const WhiskerProperties& p) {
+  if (p.links < 2) fail("whisker.links must be >= 2, got " + std::to_string(p.links));
+  if (p.radii.empty()) {
+    require_positive(p.base_radius, "whisker.base_radius");
+    require_positive(p.taper_ratio, "whisker.taper_ratio");
+  } else {
+    if (p.radii.size() < 2) fail("whisker.radii needs at least 2 values, got " + std::to_string(p.radii.size()));
+    for (std::size_t i = 0; i < p.radii.size(); ++i)
+      if (!(std::isfinite(p.radii[i]) && p.radii[i] > 0.0))
+        fail("whisker.radii[" + std::to_string(i) + "] must be positive, got " + num(p.radii[i]));
+  }
+  if (p.youngs_moduli.empty()) {
+    require_positive(p.youngs_modulus, "whisker.youngs_modulus");
+  } else {
+    if (p.youngs_moduli.size() < 2)
+      fail("whisker.youngs_modulus as a list needs at least 2 values, got " + std::to_string(p.youngs_moduli.size()));
+    for (std::size_t i = 0; i < p.youngs_moduli.size(); ++i)
+      if (!(std::isfinite(p.youngs_moduli[i]) && p.youngs_moduli[i] > 0.0))
+        fail("whisker.youngs_modulus[" + std::to_string(i) + "] must be positive, got " + num(p.youngs_moduli[i]));
+  }
+  if (!(std::isfinite(p.poisson_ratio) && p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5 + 1e-12))
+    fail("whisker.poisson_ratio must lie in (-1, 0.5], got " + num(p.poisson_ratio));
+  if (p.base_stiffness) {
+    require_positive(*p.base_stiffness, "whisker.base_stiffness");
+    if (p.base == BaseJoint::rigid) fail("whisker.base_stiffness needs base \"elastic\", got base \"rigid\"");
+  }
+}
+
+Whisker Whisker::from_points(const std::vector<Eigen::Vector3d>& points, const WhiskerProperties& props,
+                             const std::optional<Pose>& pose) {
+  validate(props);
+  if (points.size() < 3) fail("whisker.points needs at least 3 points, got " + std::to_string(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    require_finite(points[i], ("whisker.points[" + std::to_string(i) + "]").c_str());
+  Eigen::Vector3d tangent0;
+  std::vector<Eigen::Vector3d> nodes = resample_points(points, props.links, &tangent0);
+  const Eigen::Matrix3d R = whisker_frame(nodes, tangent0);  // columns: B axes in the input frame
+  const Eigen::Vector3d base = nodes.front();
+  for (auto& p : nodes) p = R.transpose() * (p - base);
+  Whisker w;
+  w.build(std::move(nodes), props);
+  if (pose) {
+    validate(*pose);
+    w.R_WB_ = rotation_from_angles(pose->theta, pose->phi, pose->zeta);
+    w.p_W_base_ = pose->p_W_base;
+  } else {
+    w.R_WB_ = R;
+    w.p_W_base_ = base;
+  }
+  return w;
+}
+
+Whisker Whisker::from_parabola(double length, double a, const WhiskerProperties& props, const Pose& pose) {
+  require_finite(a, "whisker.curvature");
+  return from_cubic(length, 0.0, a, props, pose);
+}
+
+Whisker Whisker::from_cubic(double length, double A, double B, const WhiskerProperties& props, const Pose& pose) {
+  validate(props);
+  validate(pose);
+  require_positive(length, "whisker.length");
+  require_finite(A, "whisker.cubic[0]");
+  require_finite(B, "whisker.cubic[1]");
+  Whisker w;
+  w.build(planar_polynomial_nodes(length, A, B, props.links), props);
+  w.R_WB_ = rotation_from_angles(pose.theta, pose.phi, pose.zeta);
+  w.p_W_base_ = pose.p_W_base;
+  return w;
+}
+
+Whisker Whisker::placed(const Pose& pose) const {
+  validate(pose);
+  Whisker w = *this;
+  w.R_WB_ = rotation_from_angles(pose.theta, pose.phi, pose.zeta);
+  w.p_W_base_ = pose.p_W_base;
+  return w;
+}
+
+void Whisker::build(std::vector<Eigen::Vector3d> nodes_B, const WhiskerProperties& props) {
+  props_ = props;
+  nodes_B_ = std::move(nodes_B);
+  const std::size_t N = nodes_B_.size() - 1;
+  link_length_.resize(N);
+  arc_.assign(N + 1, 0.0);
+  for (std::size_t i = 0; i < N; ++i) {
+    link_length_[i] = (nodes_B_[i + 1] - nodes_B_[i]).norm();
+    arc_[i + 1] = arc_[i] + link_length_[i];
+  }
+  const double L = arc_.back();
+
+  // Parallel-transported (twist-free) rest link frames and the rest rotation across each joint.
+  R_link_B_.resize(N);
+  Q_rest_.resize(N);
+  Eigen::Vector3d prev = Eigen::Vector3d::UnitX();
+  Eigen::Matrix3d R_prev = Eigen::Matrix3d::Identity();
+  for (std::size_t i = 0; i < N; ++i) {
+    const Eigen::Vector3d t = (nodes_B_[i + 1] - nodes_B_[i]) / link_length_[i];
+    R_link_B_[i] = minimal_rotation(prev, t) * R_prev;
+    Q_rest_[i] = R_prev.transpose() * R_link_B_[i];
+    prev = t;
+    R_prev = R_link_B_[i];
+  }
+
+  // Material and section per node (spec §2.1): I = pi r^4 / 4, J = pi r^4 / 2, G = E / (2 (1 + nu)).
+  radius_.resize(N + 1);
+  youngs_.resize(N + 1);
+  for (std::size_t i = 0; i <= N; ++i) {
+    const double u = arc_[i] / L;
+    radius_[i] = props.radii.empty() ? props.base_radius * (1.0 - (1.0 - 1.0 / props.taper_ratio) * u)
+                                     : sample_profile(props.radii, u);
+    youngs_[i] = props.youngs_moduli.empty() ? props.youngs_modulus : sample_profile(props.youngs_moduli, u);
+  }
+  cb_.resize(N);
+  ct_.resize(N);
+  for (std::size_t j = 0; j < N; ++j) {
+    const double r4 = std::pow(radius_[j], 4);
+    const double E = youngs_[j], G = E / (2.0 * (1.0 + props.poisson_ratio));
+    cb_[j] = 1.0 / (E * std::numbers::pi * r4 / 4.0);
+    ct_[j] = 1.0 / (G * std::numbers::pi * r4 / 2.0);
+  }
+
+  // Joint weights (docs/conventions.md, "Discretisation").
+  weight_.resize(N);
+  weight_load_base_.resize(N);
+  if (props.scheme == Scheme::paper) {
+    for (std::size_t j = 0; j < N; ++j) weight_[j] = weight_load_base_[j] = link_length_[j];
+    weight_load_slope_ = 0.0;
+    if (props.base == BaseJoint::rigid) weight_[0] = weight_load_base_[0] = 0.0;
+  } else {
+    for (std::size_t j = 0; j < N; ++j) {
+      const double left = j == 0 ? 0.0 : link_length_[j - 1];
+      weight_[j] = 0.5 * (left + link_length_[j]);
+      weight_load_base_[j] = 0.5 * left;
+    }
+    weight_load_slope_ = 0.5;
+  }
+  base_extra_compliance_ = props.base_stiffness ? 1.0 / *props.base_stiffness : 0.0;
+}
+
+void Whisker::locate(double s, int& link, double& h) const {
+  const int N = links();
+  if (s >= arc_[static_cast<std::size_t>(N - 1)]) {
+    link = N - 1;
+  } else if (s <= 0.0) {
+    link = 0;
+  } else {
+    auto it = std::upper_bound(arc_.begin(), arc_.end(), s);
+    link = static_cast<int>(it - arc_.begin()) - 1;
+  }
+  h = s - arc_[static_cast<std::size_t>(link)];
+}
+
+Eigen::Vector3d Whisker::rest_point_B(double s) const {
+  int k;
+  double h;
+  locate(s, k, h);
+  return nodes_B_[static_cast<std::size_t>(k)] + h * R_link_B_[static_cast<std::size_t>(k)].col(0);
+}
+
+}  // namespace vibrissa
