@@ -1,0 +1,23 @@
+#pragma once
+#include <optional>
+
+#include <Eigen/Core>
+
+namespace vibrissa {
+
+struct SolveOptions {
+  double tolerance = 1e-12;       ///< contact residual to reach [m] (and the edge-parallel force, scaled alike)
+  int max_iterations = 100;       ///< Levenberg-Marquardt iterations per attempt
+  bool compute_shape = true;      ///< fill Solution::shape (costs one extra O(N) pass)
+  bool find_other_roots = false;  ///< probe for a second root and report it (costs ~2 extra solves)
+};
+
+/// A straight edge: the infinite line through `point` along `direction` (world frame). A peg is one edge.
+struct Edge {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();            ///< [m]
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();       ///< any non-zero length
+};
+
+void validate(const Edge& edge);
+
+}  // namespace vibrissa

@@ -1,0 +1,18 @@
+#pragma once
+// Outcome of a solve. A solve never returns NaN: anything but `converged` is reported here, with a message.
+#include <string_view>
+
+namespace vibrissa {
+
+enum class Status {
+  converged,      ///< equations satisfied to the requested tolerance
+  no_contact,     ///< the object is out of reach, or the whisker is not pressed against it
+  slipped_off,    ///< equilibrium would need the contact beyond the tip
+  not_converged,  ///< the iteration limit was reached or the solver stalled
+};
+
+std::string_view to_string(Status status);
+/// Inverse of to_string; throws std::invalid_argument for an unknown name.
+Status status_from_string(std::string_view name);
+
+}  // namespace vibrissa
