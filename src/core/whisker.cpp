@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 
 #include "vibrissa/core/rest_curve.hpp"
 
@@ -136,6 +137,23 @@ void Whisker::build(std::vector<Eigen::Vector3d> nodes_B, const WhiskerPropertie
     Q_rest_[i] = R_prev.transpose() * R_link_B_[i];
     prev = t;
     R_prev = R_link_B_[i];
+  }
+
+  // Rest curvature across each link, averaged from the rest rotations at its two nodes.
+  load_curvature_.assign(N, Eigen::Vector3d::Zero());
+  if (props.scheme == Scheme::second_order && N >= 2) {
+    auto rate = [&](std::size_t j) {  // rotation vector of joint j (1 <= j < N) per unit arc length
+      const Eigen::AngleAxisd aa(Q_rest_[j]);
+      return Eigen::Vector3d(aa.angle() * aa.axis() / (0.5 * (link_length_[j - 1] + link_length_[j])));
+    };
+    for (std::size_t k = 0; k < N; ++k) {
+      if (k == 0)
+        load_curvature_[k] = rate(1);
+      else if (k == N - 1)
+        load_curvature_[k] = rate(N - 1);
+      else
+        load_curvature_[k] = 0.5 * (rate(k) + rate(k + 1));
+    }
   }
 
   // Material and section per node (spec §2.1): I = pi r^4 / 4, J = pi r^4 / 2, G = E / (2 (1 + nu)).

@@ -96,16 +96,31 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
 
   // v[0] = r (node j -> contact), v[1] = F, v[2] = C, v[3] = tangent of the loaded link.
   V3<S> v[4] = {V3<S>(h, S(0.0), S(0.0)), force_L, couple_L, V3<S>(S(1.0), S(0.0), S(0.0))};
+  if (scheme == Scheme::second_order) {  // load frame follows the smooth rest tangent at s (whisker.hpp)
+    const Eigen::Vector3d& kappa = w.load_frame_curvature()[static_cast<std::size_t>(k)];
+    const S offset = h - S(0.5 * ell[static_cast<std::size_t>(k)]);
+    const V3<S> psi(offset * kappa.x(), offset * kappa.y(), offset * kappa.z());
+    apply_joint_rotation(Scheme::second_order, psi, v + 1, 3);
+  }
   if (omega_out)
     for (int j = k + 1; j < w.links(); ++j) omega_out[j].setZero();
   for (int j = k; j >= 0; --j) {
     const std::size_t u = static_cast<std::size_t>(j);
-    const V3<S> M = cross(v[0], v[1]) + v[2];
-    const S wj = (j == k) ? S(w.loaded_joint_weight_base(j)) + w.loaded_joint_weight_slope() * h : S(weight[u]);
-    V3<S> omega(wj * ct[u] * M.x, wj * cb[u] * M.y, wj * cb[u] * M.z);
-    if (j == 0 && base_extra > 0.0) {
-      omega.y += base_extra * M.y;
-      omega.z += base_extra * M.z;
+    // Joint weights: a force's moment falls linearly to zero at the load, a couple's does not, so on the
+    // loaded joint they integrate over [s_k, s] with the trapezoid and the rectangle rule respectively.
+    V3<S> M;
+    if (j == k) {
+      const double base_w = w.loaded_joint_weight_base(j), slope = w.loaded_joint_weight_slope();
+      const S wf = S(base_w) + slope * h, wc = S(base_w) + (slope > 0.0 ? h : S(0.0));
+      M = wf * cross(v[0], v[1]) + wc * v[2];
+    } else {
+      M = S(weight[u]) * (cross(v[0], v[1]) + v[2]);
+    }
+    V3<S> omega(ct[u] * M.x, cb[u] * M.y, cb[u] * M.z);
+    if (j == 0 && base_extra > 0.0) {  // follicle spring in series (moment, not weighted)
+      const V3<S> Mb = cross(v[0], v[1]) + v[2];
+      omega.y += base_extra * Mb.y;
+      omega.z += base_extra * Mb.z;
     }
     if (omega_out) omega_out[j] = Eigen::Vector3d(value_of(omega.x), value_of(omega.y), value_of(omega.z));
     apply_joint_rotation(scheme, omega, v, 4);

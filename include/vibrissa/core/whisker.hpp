@@ -85,6 +85,10 @@ class Whisker {
   /// Weight of the last loaded joint j for a load h past node j: weight_at_load_base + h * weight_at_load_slope.
   [[nodiscard]] double loaded_joint_weight_base(int j) const { return weight_load_base_[static_cast<std::size_t>(j)]; }
   [[nodiscard]] double loaded_joint_weight_slope() const { return weight_load_slope_; }
+  /// Rest curvature vector across link k in its own frame [rad/m]: the second-order scheme turns the
+  /// load frame by (h - l_k/2) times it, so that "normal to the whisker" follows the smooth rest tangent
+  /// rather than the chord (zero for the paper's scheme, whose load is normal to the link).
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& load_frame_curvature() const { return load_curvature_; }
   /// Extra bending compliance of the follicle spring at joint 0 [1/(N·m)] (0 if none).
   [[nodiscard]] double base_extra_compliance() const { return base_extra_compliance_; }
   /// Bending stiffness at the base E I_0 [N·m^2] (scales every solve).
@@ -108,6 +112,7 @@ class Whisker {
   std::vector<double> link_length_, arc_;
   std::vector<Eigen::Matrix3d> Q_rest_, R_link_B_;
   std::vector<double> radius_, youngs_;
+  std::vector<Eigen::Vector3d> load_curvature_;
   std::vector<double> cb_, ct_, weight_, weight_load_base_;
   double weight_load_slope_ = 0.0;
   double base_extra_compliance_ = 0.0;

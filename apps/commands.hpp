@@ -1,0 +1,10 @@
+#pragma once
+// Each subcommand of the `vibrissa` tool lives in its own file and registers itself here.
+#include <CLI/CLI.hpp>
+
+namespace vibrissa::cli {
+
+void register_solve(CLI::App& app);
+void register_demo(CLI::App& app);
+
+}  // namespace vibrissa::cli

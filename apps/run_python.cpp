@@ -1,0 +1,31 @@
+#include "run_python.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+namespace vibrissa::cli {
+namespace {
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+}  // namespace
+
+int run_figure_script(const std::string& script, const std::vector<std::string>& args) {
+  const char* env_dir = std::getenv("VIBRISSA_FIGURES_DIR");
+  const std::filesystem::path dir = env_dir ? env_dir : VIBRISSA_FIGURES_DIR;
+  const std::filesystem::path path = dir / script;
+  if (!std::filesystem::exists(path)) {
+    std::cerr << "vibrissa: warning: figure script not found: " << path << " (figures skipped)\n";
+    return 2;
+  }
+  std::string cmd = quote(VIBRISSA_PYTHON) + " " + quote(path.string());
+  for (const auto& a : args) cmd += " " + quote(a);
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0) std::cerr << "vibrissa: warning: figure script " << script << " failed (exit " << rc << ")\n";
+  return rc;
+}
+
+}  // namespace vibrissa::cli

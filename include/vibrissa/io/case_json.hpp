@@ -1,0 +1,64 @@
+#pragma once
+// The `vibrissa solve` JSON contract (docs/formats.md): a case (whisker + load) in, a result out, SI units.
+// Readers reject unknown fields and name the offending field and value in std::invalid_argument.
+#include <optional>
+#include <string>
+#include <variant>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "vibrissa/core/whisker.hpp"
+#include "vibrissa/solve/options.hpp"
+#include "vibrissa/solve/solution.hpp"
+
+namespace vibrissa {
+
+struct ForceLoad {
+  double force = 0.0, arc_length = 0.0, angle = 0.0;
+};
+struct DeadLoad {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  double arc_length = 0.0;
+};
+struct PointLoad {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  std::optional<double> arc_length_hint;
+  std::optional<Eigen::Vector3d> edge_direction;
+};
+struct EdgeLoad {
+  Edge edge;
+  std::optional<double> arc_length_hint;
+  std::optional<Eigen::Vector3d> approach;
+};
+struct FrictionalEdgeLoad {
+  Edge edge;
+  double friction_coefficient = 0.0;
+  Eigen::Vector3d previous_contact = Eigen::Vector3d::Zero();
+  std::optional<Eigen::Vector3d> approach;
+};
+using Load = std::variant<ForceLoad, DeadLoad, PointLoad, EdgeLoad, FrictionalEdgeLoad>;
+
+struct Case {
+  Whisker whisker;
+  Load load;
+  SolveOptions options;
+};
+
+/// Whisker from the "whisker" object of a case.
+Whisker whisker_from_json(const nlohmann::json& j);
+Load load_from_json(const nlohmann::json& j);
+/// Whole case; options default to find_other_roots = true.
+Case case_from_json(const nlohmann::json& j);
+
+Solution solve_case(const Case& c);
+
+nlohmann::json solution_to_json(const Solution& s);
+nlohmann::json to_json(const Eigen::Vector3d& v);
+
+/// Reads and parses a JSON file; errors name the file.
+nlohmann::json read_json_file(const std::string& path);
+/// Writes atomically (temporary file + rename), so a failed run never leaves a partial result.
+void write_json_file(const std::string& path, const nlohmann::json& j);
+
+}  // namespace vibrissa

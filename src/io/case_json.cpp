@@ -1,0 +1,264 @@
+#include "vibrissa/io/case_json.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "vibrissa/solve/solvers.hpp"
+
+namespace vibrissa {
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& msg) { throw std::invalid_argument(msg); }
+
+void reject_unknown(const json& j, const std::string& where, const std::set<std::string>& known) {
+  if (!j.is_object()) fail(where + " must be a JSON object, got " + j.dump());
+  for (const auto& [key, value] : j.items())
+    if (!known.count(key)) fail("unknown field " + where + "." + key);
+}
+
+double number(const json& j, const std::string& field) {
+  if (!j.is_number()) fail(field + " must be a number, got " + j.dump());
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) fail(field + " must be finite, got " + j.dump());
+  return v;
+}
+
+double number_or(const json& j, const char* key, const std::string& where, double fallback) {
+  return j.contains(key) ? number(j.at(key), where + "." + key) : fallback;
+}
+
+Eigen::Vector3d vec3(const json& j, const std::string& field) {
+  if (!j.is_array() || j.size() != 3) fail(field + " must be an array of 3 numbers, got " + j.dump());
+  Eigen::Vector3d v;
+  for (int i = 0; i < 3; ++i) v[i] = number(j[static_cast<std::size_t>(i)], field + "[" + std::to_string(i) + "]");
+  return v;
+}
+
+std::vector<double> numbers(const json& j, const std::string& field) {
+  if (!j.is_array()) fail(field + " must be an array of numbers, got " + j.dump());
+  std::vector<double> out;
+  for (std::size_t i = 0; i < j.size(); ++i) out.push_back(number(j[i], field + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+Pose pose_from_json(const json& j) {
+  reject_unknown(j, "whisker.pose", {"base", "theta", "phi", "zeta"});
+  Pose p;
+  if (j.contains("base")) p.p_W_base = vec3(j.at("base"), "whisker.pose.base");
+  p.theta = number_or(j, "theta", "whisker.pose", 0.0);
+  p.phi = number_or(j, "phi", "whisker.pose", 0.0);
+  p.zeta = number_or(j, "zeta", "whisker.pose", 0.0);
+  return p;
+}
+
+Edge edge_from_json(const json& j) {
+  Edge e;
+  if (!j.contains("point")) fail("load.point is required for an edge");
+  if (!j.contains("direction")) fail("load.direction is required for an edge");
+  e.point = vec3(j.at("point"), "load.point");
+  e.direction = vec3(j.at("direction"), "load.direction");
+  if (!(e.direction.norm() > 0.0)) fail("load.direction must be non-zero, got " + j.at("direction").dump());
+  return e;
+}
+
+}  // namespace
+
+json to_json(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+Whisker whisker_from_json(const json& j) {
+  reject_unknown(j, "whisker",
+                 {"points", "length", "curvature", "cubic", "pose", "links", "base_radius", "taper_ratio", "radii",
+                  "youngs_modulus", "poisson_ratio", "base", "base_stiffness", "scheme"});
+  WhiskerProperties p;
+  if (j.contains("links")) {
+    const double n = number(j.at("links"), "whisker.links");
+    if (n != std::floor(n) || n < 2 || n > 100000) fail("whisker.links must be an integer >= 2, got " + j.at("links").dump());
+    p.links = static_cast<int>(n);
+  }
+  p.base_radius = number_or(j, "base_radius", "whisker", p.base_radius);
+  p.taper_ratio = number_or(j, "taper_ratio", "whisker", p.taper_ratio);
+  if (j.contains("radii")) p.radii = numbers(j.at("radii"), "whisker.radii");
+  if (j.contains("youngs_modulus")) {
+    if (j.at("youngs_modulus").is_array())
+      p.youngs_moduli = numbers(j.at("youngs_modulus"), "whisker.youngs_modulus");
+    else
+      p.youngs_modulus = number(j.at("youngs_modulus"), "whisker.youngs_modulus");
+  }
+  p.poisson_ratio = number_or(j, "poisson_ratio", "whisker", p.poisson_ratio);
+  if (j.contains("base")) {
+    const json& b = j.at("base");
+    if (b == "elastic") p.base = BaseJoint::elastic;
+    else if (b == "rigid") p.base = BaseJoint::rigid;
+    else fail("whisker.base must be \"elastic\" or \"rigid\", got " + b.dump());
+  }
+  if (j.contains("base_stiffness")) p.base_stiffness = number(j.at("base_stiffness"), "whisker.base_stiffness");
+  if (j.contains("scheme")) {
+    const json& s = j.at("scheme");
+    if (s == "paper") p.scheme = Scheme::paper;
+    else if (s == "second_order") p.scheme = Scheme::second_order;
+    else fail("whisker.scheme must be \"paper\" or \"second_order\", got " + s.dump());
+  }
+  std::optional<Pose> pose;
+  if (j.contains("pose")) pose = pose_from_json(j.at("pose"));
+
+  const int shapes = int(j.contains("points")) + int(j.contains("length"));
+  if (shapes != 1) fail("whisker needs exactly one of \"points\" or \"length\" (with \"curvature\" or \"cubic\")");
+  if (j.contains("points")) {
+    const json& pts = j.at("points");
+    if (!pts.is_array()) fail("whisker.points must be an array of [x, y, z], got " + pts.dump());
+    std::vector<Eigen::Vector3d> points;
+    for (std::size_t i = 0; i < pts.size(); ++i) points.push_back(vec3(pts[i], "whisker.points[" + std::to_string(i) + "]"));
+    if (j.contains("curvature") || j.contains("cubic")) fail("whisker.curvature/cubic cannot be combined with points");
+    return Whisker::from_points(points, p, pose);
+  }
+  const double length = number(j.at("length"), "whisker.length");
+  if (!(length > 0.0)) fail("whisker.length must be positive, got " + j.at("length").dump());
+  if (j.contains("curvature") && j.contains("cubic")) fail("whisker has both curvature and cubic: give one");
+  double A = 0.0, B = 0.0;
+  if (j.contains("curvature")) B = number(j.at("curvature"), "whisker.curvature");
+  if (j.contains("cubic")) {
+    const auto c = numbers(j.at("cubic"), "whisker.cubic");
+    if (c.size() != 2) fail("whisker.cubic must be [A, B], got " + j.at("cubic").dump());
+    A = c[0];
+    B = c[1];
+  }
+  return Whisker::from_cubic(length, A, B, p, pose.value_or(Pose{}));
+}
+
+Load load_from_json(const json& j) {
+  if (!j.is_object() || !j.contains("mode")) fail("load.mode is required (force, dead_load, point, edge, frictional_edge)");
+  const json& mode = j.at("mode");
+  if (mode == "force") {
+    reject_unknown(j, "load", {"mode", "force", "arc_length", "angle"});
+    if (!j.contains("force") || !j.contains("arc_length")) fail("load: force mode needs force and arc_length");
+    return ForceLoad{number(j.at("force"), "load.force"), number(j.at("arc_length"), "load.arc_length"),
+                     number_or(j, "angle", "load", 0.0)};
+  }
+  if (mode == "dead_load") {
+    reject_unknown(j, "load", {"mode", "force", "arc_length"});
+    if (!j.contains("force") || !j.contains("arc_length")) fail("load: dead_load mode needs force [3] and arc_length");
+    return DeadLoad{vec3(j.at("force"), "load.force"), number(j.at("arc_length"), "load.arc_length")};
+  }
+  if (mode == "point") {
+    reject_unknown(j, "load", {"mode", "point", "arc_length_hint", "edge_direction"});
+    if (!j.contains("point")) fail("load.point is required in point mode");
+    PointLoad l;
+    l.point = vec3(j.at("point"), "load.point");
+    if (j.contains("arc_length_hint")) l.arc_length_hint = number(j.at("arc_length_hint"), "load.arc_length_hint");
+    if (j.contains("edge_direction")) l.edge_direction = vec3(j.at("edge_direction"), "load.edge_direction");
+    return l;
+  }
+  if (mode == "edge") {
+    reject_unknown(j, "load", {"mode", "point", "direction", "arc_length_hint", "approach"});
+    EdgeLoad l;
+    l.edge = edge_from_json(j);
+    if (j.contains("arc_length_hint")) l.arc_length_hint = number(j.at("arc_length_hint"), "load.arc_length_hint");
+    if (j.contains("approach")) l.approach = vec3(j.at("approach"), "load.approach");
+    return l;
+  }
+  if (mode == "frictional_edge") {
+    reject_unknown(j, "load", {"mode", "point", "direction", "friction_coefficient", "previous_contact", "approach"});
+    FrictionalEdgeLoad l;
+    l.edge = edge_from_json(j);
+    if (!j.contains("friction_coefficient")) fail("load.friction_coefficient is required in frictional_edge mode");
+    if (!j.contains("previous_contact")) fail("load.previous_contact is required in frictional_edge mode");
+    l.friction_coefficient = number(j.at("friction_coefficient"), "load.friction_coefficient");
+    l.previous_contact = vec3(j.at("previous_contact"), "load.previous_contact");
+    if (j.contains("approach")) l.approach = vec3(j.at("approach"), "load.approach");
+    return l;
+  }
+  fail("load.mode must be one of force, dead_load, point, edge, frictional_edge; got " + mode.dump());
+}
+
+Case case_from_json(const json& j) {
+  reject_unknown(j, "case", {"whisker", "load", "options"});
+  if (!j.contains("whisker")) fail("case.whisker is required");
+  if (!j.contains("load")) fail("case.load is required");
+  SolveOptions o;
+  o.find_other_roots = true;
+  if (j.contains("options")) {
+    const json& oj = j.at("options");
+    reject_unknown(oj, "options", {"tolerance", "max_iterations", "find_other_roots", "compute_shape"});
+    o.tolerance = number_or(oj, "tolerance", "options", o.tolerance);
+    if (!(o.tolerance > 0.0)) fail("options.tolerance must be positive, got " + std::to_string(o.tolerance));
+    o.max_iterations = static_cast<int>(number_or(oj, "max_iterations", "options", o.max_iterations));
+    if (o.max_iterations < 1) fail("options.max_iterations must be >= 1, got " + std::to_string(o.max_iterations));
+    if (oj.contains("find_other_roots")) o.find_other_roots = oj.at("find_other_roots").get<bool>();
+    if (oj.contains("compute_shape")) o.compute_shape = oj.at("compute_shape").get<bool>();
+  }
+  return Case{whisker_from_json(j.at("whisker")), load_from_json(j.at("load")), o};
+}
+
+Solution solve_case(const Case& c) {
+  const Whisker& w = c.whisker;
+  return std::visit(
+      [&](const auto& l) -> Solution {
+        using T = std::decay_t<decltype(l)>;
+        if constexpr (std::is_same_v<T, ForceLoad>)
+          return solve_force(w, l.force, l.arc_length, l.angle, c.options);
+        else if constexpr (std::is_same_v<T, DeadLoad>)
+          return solve_dead_load(w, l.force, l.arc_length, c.options);
+        else if constexpr (std::is_same_v<T, PointLoad>)
+          return solve_point(w, l.point, l.arc_length_hint, c.options, nullptr, l.edge_direction);
+        else if constexpr (std::is_same_v<T, EdgeLoad>)
+          return solve_edge(w, l.edge, l.arc_length_hint, c.options, nullptr, l.approach);
+        else
+          return solve_frictional_edge(w, l.edge, l.friction_coefficient, l.previous_contact, c.options, nullptr,
+                                       l.approach);
+      },
+      c.load);
+}
+
+json solution_to_json(const Solution& s) {
+  json j;
+  j["status"] = std::string(to_string(s.status));
+  j["message"] = s.message;
+  j["force_magnitude"] = s.force_magnitude;
+  j["arc_length"] = s.arc_length;
+  j["angle"] = s.angle;
+  j["contact_point"] = to_json(s.contact_point);
+  j["force"] = to_json(s.force);
+  j["moment"] = to_json(s.moment);
+  const auto& wf = s.whisker_frame;
+  j["whisker_frame"] = {{"force", to_json(wf.force)}, {"moment", to_json(wf.moment)}, {"Fx", wf.force.x()},
+                        {"Mx", wf.moment.x()},       {"FT", wf.FT},                  {"MB", wf.MB},
+                        {"FD", wf.FD},               {"MD", wf.MD}};
+  j["normal_force"] = s.normal_force ? json(*s.normal_force) : json(nullptr);
+  j["edge_force"] = s.edge_force ? json(*s.edge_force) : json(nullptr);
+  j["other_root_arc_length"] = s.other_root_arc_length ? json(*s.other_root_arc_length) : json(nullptr);
+  j["residual"] = s.residual;
+  j["iterations"] = s.iterations;
+  json shape = json::array();
+  for (const auto& p : s.shape) shape.push_back(to_json(p));
+  j["shape"] = std::move(shape);
+  return j;
+}
+
+json read_json_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail("cannot open case file " + path);
+  try {
+    return json::parse(in);
+  } catch (const json::parse_error& e) {
+    fail(path + ": not valid JSON: " + e.what());
+  }
+}
+
+void write_json_file(const std::string& path, const json& j) {
+  const std::string tmp = path + ".partial";
+  {
+    std::ofstream out(tmp);
+    if (!out) fail("cannot write " + path);
+    out << j.dump(2) << "\n";
+    if (!out) fail("cannot write " + path);
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace vibrissa

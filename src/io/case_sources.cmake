@@ -1,0 +1,1 @@
+target_sources(vibrissa PRIVATE ${CMAKE_CURRENT_LIST_DIR}/case_json.cpp)

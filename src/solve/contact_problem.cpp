@@ -1,0 +1,93 @@
+#include "contact_problem.hpp"
+
+#include <cmath>
+#include <vector>
+
+namespace vibrissa::detail {
+
+LMBounds contact_bounds() {
+  LMBounds b;
+  b.lower[2] = 1e-9;
+  b.upper[2] = 1.5;
+  return b;
+}
+
+Eigen::Vector3d unknowns_from_state(const LoadState& s, const Scales& sc) {
+  return {s.force_y / sc.force, s.force_z / sc.force, s.arc_length / sc.length};
+}
+
+LoadState state_from_unknowns(const Eigen::Vector3d& u, const Scales& sc) {
+  LoadState s;
+  s.force_y = u[0] * sc.force;
+  s.force_z = u[1] * sc.force;
+  s.arc_length = u[2] * sc.length;
+  return s;
+}
+
+void normal_basis(const Eigen::Vector3d& d, Eigen::Vector3d& e1, Eigen::Vector3d& e2) {
+  const Eigen::Vector3d helper = std::abs(d.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  e1 = (helper - helper.dot(d) * d).normalized();
+  e2 = d.cross(e1);
+}
+
+void fill_solution(const Whisker& w, const LoadState& state, const SolveOptions& options,
+                   const std::optional<Eigen::Vector3d>& edge_direction_W, Solution& out) {
+  std::vector<Eigen::Vector3d> omega(static_cast<std::size_t>(w.links()));
+  const V3<double> F_L(state.force_x, state.force_y, state.force_z);
+  const auto c = deflect<double>(w, F_L, V3<double>(0, 0, 0), state.arc_length, omega.data());
+  const Eigen::Vector3d p_B = to_eigen(c.p_contact_B), F_B = to_eigen(c.force_B);
+  const Eigen::Vector3d M_B = p_B.cross(F_B);
+  out.state = state;
+  out.arc_length = state.arc_length;
+  out.force_magnitude = F_B.norm();
+  out.angle = std::atan2(state.force_z, state.force_y);
+  out.contact_point = w.to_world(p_B);
+  out.force = w.R_WB() * F_B;
+  out.moment = w.R_WB() * M_B;
+  auto& wf = out.whisker_frame;
+  wf.force = F_B;
+  wf.moment = M_B;
+  wf.FT = std::hypot(F_B.y(), F_B.z());
+  wf.MB = std::hypot(M_B.y(), M_B.z());
+  wf.FD = std::atan2(F_B.z(), F_B.y());
+  wf.MD = std::atan2(M_B.z(), M_B.y());
+  if (edge_direction_W) {
+    const Eigen::Vector3d d = edge_direction_W->normalized();
+    out.edge_force = out.force.dot(d);
+    out.normal_force = (out.force - *out.edge_force * d).norm();
+  }
+  out.shape.clear();
+  if (options.compute_shape) {
+    std::vector<Eigen::Vector3d> nodes;
+    deflected_nodes_B(w, omega.data(), nodes);
+    out.shape.reserve(nodes.size());
+    for (const auto& p : nodes) out.shape.push_back(w.to_world(p));
+  }
+}
+
+Solution unloaded_solution(const Whisker& w, Status status, std::string message, const SolveOptions& options) {
+  Solution out;
+  LoadState rest;
+  rest.arc_length = 0.0;
+  fill_solution(w, rest, options, std::nullopt, out);
+  out.contact_point = w.p_W_base();
+  out.status = status;
+  out.message = std::move(message);
+  return out;
+}
+
+double arc_length_at_distance(const Whisker& w, double distance) {
+  const auto& nodes = w.rest_nodes_B();
+  const auto& arc = w.node_arc_lengths();
+  for (std::size_t i = 1; i < nodes.size(); ++i) {
+    const double d1 = nodes[i].norm();
+    if (d1 >= distance) {
+      const double d0 = nodes[i - 1].norm();
+      const double f = (distance - d0) / std::max(d1 - d0, 1e-300);
+      return arc[i - 1] + std::clamp(f, 0.0, 1.0) * (arc[i] - arc[i - 1]);
+    }
+  }
+  return w.length();
+}
+
+}  // namespace vibrissa::detail

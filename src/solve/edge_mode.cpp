@@ -1,0 +1,84 @@
+// Edge mode (spec §2.1, §3.1): frictionless slip along a straight edge. Unknowns (F_y, F_z, s); equations:
+// the contact lies on the line, and the force is normal to the line (it is normal to the whisker by
+// construction). The whisker is pushed, never pulled (docs/conventions.md, "Contact side").
+#include <cmath>
+
+#include "edge_problem.hpp"
+#include "vibrissa/solve/solvers.hpp"
+
+namespace vibrissa {
+
+void validate(const Edge& edge) {
+  require_finite(edge.point, "edge.point");
+  require_finite(edge.direction, "edge.direction");
+  if (!(edge.direction.norm() > 0.0)) throw std::invalid_argument("edge.direction must be non-zero, got [0, 0, 0]");
+}
+
+namespace detail {
+
+/// Checks that a converged edge contact pushes the whisker; rewrites the status if it does not.
+void check_contact_side(const Whisker& w, const std::optional<Eigen::Vector3d>& approach_W, Solution& out) {
+  if (out.status != Status::converged || out.force_magnitude == 0.0) return;
+  const Eigen::Vector3d displacement = out.contact_point - w.rest_point_W(out.arc_length);
+  if (out.force.dot(displacement) < -1e-12 * out.force_magnitude * w.length()) {
+    out.status = Status::no_contact;
+    out.message = "the edge would have to pull the whisker toward it: not pressed against the edge";
+  } else if (approach_W && out.force.dot(*approach_W) > 0.0) {
+    out.status = Status::no_contact;
+    out.message = "the whisker is on the far side of the edge for the given approach direction";
+  }
+}
+
+}  // namespace detail
+
+Solution solve_edge(const Whisker& w, const Edge& edge, std::optional<double> hint, const SolveOptions& options,
+                    const LoadState* warm, const std::optional<Eigen::Vector3d>& approach_W) {
+  validate(edge);
+  if (hint) require_finite(*hint, "load.arc_length_hint");
+  if (approach_W) require_finite(*approach_W, "load.approach");
+  const detail::Scales sc(w);
+  const detail::EdgeGeometryB g = detail::edge_in_body(w, edge);
+  bool within_reach = false;
+  const double s_near = detail::nearest_rest_arc_length(w, g, within_reach);
+  if (!within_reach)
+    return detail::unloaded_solution(w, Status::no_contact, "the edge is out of the whisker's reach", options);
+
+  Eigen::Vector3d u0;
+  if (warm)
+    u0 = detail::unknowns_from_state(*warm, sc);
+  else
+    u0 = Eigen::Vector3d(0.0, 0.0, (hint ? std::clamp(*hint, 1e-6 * sc.length, w.length()) : s_near) / sc.length);
+  detail::EdgeAttempt a = detail::attempt_edge(w, sc, g, 0.0, u0, options);
+  if (a.status == Status::not_converged && (warm || hint)) {
+    detail::EdgeAttempt cold =
+        detail::attempt_edge(w, sc, g, 0.0, Eigen::Vector3d(0.0, 0.0, s_near / sc.length), options);
+    cold.lm.iterations += a.lm.iterations;
+    a = cold;
+  }
+  if (a.status == Status::not_converged) a = detail::continue_from_touch(w, sc, g, s_near, options, a);
+  Solution out;
+  detail::fill_solution(w, detail::state_from_unknowns(a.lm.u, sc), options, g.direction.norm() > 0 ?
+                        std::optional<Eigen::Vector3d>(edge.direction.normalized()) : std::nullopt, out);
+  out.status = a.status;
+  out.iterations = a.lm.iterations;
+  out.residual = a.lm.residual * sc.length;
+  switch (a.status) {
+    case Status::converged: out.message = "frictionless contact on the edge"; break;
+    case Status::slipped_off: out.message = "equilibrium would need contact beyond the tip: the whisker slips off"; break;
+    default: out.message = "no equilibrium on the edge within the iteration limit"; break;
+  }
+  detail::check_contact_side(w, approach_W, out);
+  if (out.status == Status::converged && options.find_other_roots) {
+    const double s_star = a.lm.u[2];
+    for (double s_try : {0.5 * s_star, s_star + 0.5 * (1.0 - s_star)}) {
+      const auto other = detail::attempt_edge(w, sc, g, 0.0, Eigen::Vector3d(0.0, 0.0, s_try), options);
+      if (other.status == Status::converged && std::abs(other.lm.u[2] - s_star) > 1e-6) {
+        out.other_root_arc_length = other.lm.u[2] * sc.length;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace vibrissa

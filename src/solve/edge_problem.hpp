@@ -1,0 +1,43 @@
+#pragma once
+// The edge equations (spec §2.1, last paragraphs): the contact lies on the line (two equations) and the
+// force's component along the line equals -c · F_N, where F_N is its component normal to the line:
+// c = 0 is the frictionless edge mode of the paper; c = sigma · mu is Coulomb slip opposing the slip
+// direction sigma (frictional edge mode, spec §4.4 "future work").
+#include <cmath>
+
+#include "contact_problem.hpp"
+#include "vibrissa/solve/status.hpp"
+
+namespace vibrissa::detail {
+
+struct EdgeGeometryB {
+  Eigen::Vector3d point;      ///< a point of the line, whisker frame [m]
+  Eigen::Vector3d direction;  ///< unit direction, whisker frame
+  Eigen::Vector3d e1, e2;     ///< basis of the plane normal to the line
+};
+
+EdgeGeometryB edge_in_body(const Whisker& w, const Edge& edge);
+
+struct EdgeAttempt {
+  LMResult lm;
+  Status status = Status::not_converged;
+};
+
+/// Solves the edge equations with friction factor c from scaled unknowns u0.
+EdgeAttempt attempt_edge(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double c,
+                         const Eigen::Vector3d& u0, const SolveOptions& options);
+
+/// Globalisation by continuation when a direct solve fails: the line is moved from where it just touches
+/// the rest whisker (exact solution: zero force at the nearest rest point) to its true place in adaptive
+/// steps, each warm-started from the last. Returns the final attempt (or `failed` if no step succeeds).
+EdgeAttempt continue_from_touch(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double s_touch,
+                                const SolveOptions& options, const EdgeAttempt& failed);
+
+/// Checks that a converged edge contact pushes the whisker (and opposes `approach_W` if given); rewrites
+/// the status to no_contact if it does not.
+void check_contact_side(const Whisker& w, const std::optional<Eigen::Vector3d>& approach_W, Solution& out);
+
+/// Arc length of the rest whisker's point nearest the line, and whether the line is within reach.
+double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g, bool& within_reach);
+
+}  // namespace vibrissa::detail

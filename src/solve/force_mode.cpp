@@ -1,0 +1,72 @@
+// Force mode (spec §2.1): the load is given, the shape follows explicitly. Dead loads (fixed world
+// direction) are found by solving for the follower load whose deflected direction equals the given one.
+#include <cmath>
+
+#include "contact_problem.hpp"
+#include "vibrissa/solve/solvers.hpp"
+
+namespace vibrissa {
+
+namespace {
+void check_arc_length(const Whisker& w, double s) {
+  require_finite(s, "load.arc_length");
+  if (!(s > 0.0 && s <= w.length() * (1.0 + 1e-12)))
+    throw std::invalid_argument("load.arc_length must lie in (0, L = " + std::to_string(w.length()) +
+                                "] m, got " + std::to_string(s));
+}
+}  // namespace
+
+Solution solve_force(const Whisker& w, double force, double arc_length, double angle, const SolveOptions& options) {
+  require_finite(force, "load.force");
+  if (force < 0.0) throw std::invalid_argument("load.force must be >= 0 (use angle to set direction), got " +
+                                               std::to_string(force));
+  require_finite(angle, "load.angle");
+  check_arc_length(w, arc_length);
+  LoadState state;
+  state.force_y = force * std::cos(angle);
+  state.force_z = force * std::sin(angle);
+  state.arc_length = arc_length;
+  Solution out;
+  detail::fill_solution(w, state, options, std::nullopt, out);
+  out.status = Status::converged;
+  out.message = "explicit force-mode evaluation";
+  return out;
+}
+
+Solution solve_dead_load(const Whisker& w, const Eigen::Vector3d& force_W, double arc_length,
+                         const SolveOptions& options, const LoadState* warm) {
+  require_finite(force_W, "load.force");
+  check_arc_length(w, arc_length);
+  const detail::Scales sc(w);
+  const Eigen::Vector3d target_B = w.R_WB().transpose() * force_W / sc.force;
+  int k;
+  double h;
+  w.locate(arc_length, k, h);
+  // Start from the rest-frame components of the load (or the warm state).
+  Eigen::Vector3d u0 = w.rest_link_frames_B()[static_cast<std::size_t>(k)].transpose() * target_B;
+  if (warm) u0 = Eigen::Vector3d(warm->force_x, warm->force_y, warm->force_z) / sc.force;
+  auto residual = [&](const auto& u) {
+    using S = std::decay_t<decltype(u[0])>;
+    const V3<S> F(u[0] * sc.force, u[1] * sc.force, u[2] * sc.force);
+    const auto c = deflect<S>(w, F, V3<S>(S(0.0), S(0.0), S(0.0)), S(arc_length));
+    return std::array<S, 3>{c.force_B.x / sc.force - target_B.x(), c.force_B.y / sc.force - target_B.y(),
+                            c.force_B.z / sc.force - target_B.z()};
+  };
+  const double tol = std::max(options.tolerance / sc.length, 1e-14 * std::max(1.0, target_B.norm()));
+  const auto lm = detail::levenberg_marquardt(residual, u0, detail::LMBounds{}, tol, options.max_iterations);
+  LoadState state;
+  state.force_x = lm.u[0] * sc.force;
+  state.force_y = lm.u[1] * sc.force;
+  state.force_z = lm.u[2] * sc.force;
+  state.arc_length = arc_length;
+  Solution out;
+  detail::fill_solution(w, state, options, std::nullopt, out);
+  out.iterations = lm.iterations;
+  out.residual = lm.residual * sc.force;
+  out.status = lm.converged ? Status::converged : Status::not_converged;
+  out.message = lm.converged ? "dead load: follower equivalent found (residual in N)"
+                             : "dead load: no equilibrium found within the iteration limit (residual in N)";
+  return out;
+}
+
+}  // namespace vibrissa

@@ -1,0 +1,78 @@
+// Frictional edge mode: Coulomb friction mu along the edge, quasi-static, with contact history.
+// Beyond the paper (its §4.4 names it future work). Per frame:
+//   1. the frictionless edge solution gives the point q_free the contact would slip to (and detects release);
+//   2. stick: the contact stays at the previous point q_prev if the edge-parallel force needed there is
+//      within the friction cone, |F_par| <= mu F_N (contact-point mode at q_prev);
+//   3. slip: otherwise the contact moves from q_prev toward q_free, to where |F_par| = mu F_N with friction
+//      opposing the slip; by §3.1 it lies between the two points.
+#include <cmath>
+
+#include "edge_problem.hpp"
+#include "vibrissa/solve/solvers.hpp"
+
+namespace vibrissa {
+
+Solution solve_frictional_edge(const Whisker& w, const Edge& edge, double mu, const Eigen::Vector3d& previous_contact_W,
+                               const SolveOptions& options, const LoadState* warm,
+                               const std::optional<Eigen::Vector3d>& approach_W) {
+  validate(edge);
+  require_finite(mu, "friction_coefficient");
+  if (mu < 0.0) throw std::invalid_argument("friction_coefficient must be >= 0, got " + std::to_string(mu));
+  require_finite(previous_contact_W, "previous_contact");
+  const Eigen::Vector3d d = edge.direction.normalized();
+  const Eigen::Vector3d q_prev = edge.point + (previous_contact_W - edge.point).dot(d) * d;
+
+  SolveOptions inner = options;
+  inner.compute_shape = false;
+  inner.find_other_roots = false;
+  Solution free = solve_edge(w, edge, std::nullopt, inner, warm, approach_W);
+  auto finish = [&](Solution s, const std::string& message) {
+    LoadState st = s.state;
+    Solution out;
+    detail::fill_solution(w, st, options, d, out);
+    out.status = s.status;
+    out.message = message;
+    out.iterations = s.iterations;
+    out.residual = s.residual;
+    return out;
+  };
+  if (free.status != Status::converged) return finish(free, free.message);
+  if (mu == 0.0) return finish(free, "frictionless: slipping on the edge");
+
+  // 2. Stick at the previous contact.
+  const LoadState* stick_start = warm ? warm : &free.state;
+  Solution stick = solve_point(w, q_prev, std::nullopt, inner, stick_start, d);
+  if (stick.status == Status::converged) {
+    detail::check_contact_side(w, approach_W, stick);
+    if (stick.status == Status::converged && std::abs(*stick.edge_force) <= mu * *stick.normal_force * (1.0 + 1e-9)) {
+      stick.iterations += free.iterations;
+      return finish(stick, "stick: the contact holds its previous point on the edge");
+    }
+  }
+
+  // 3. Slip toward the frictionless point until the friction cone is met.
+  const double travel = (free.contact_point - q_prev).dot(d);
+  if (travel == 0.0) return finish(free, "slip: previous contact coincides with the frictionless point");
+  const double sigma = travel > 0.0 ? 1.0 : -1.0;
+  const detail::Scales sc(w);
+  const detail::EdgeGeometryB g = detail::edge_in_body(w, edge);
+  detail::EdgeAttempt best;
+  for (const LoadState* start : {stick.status == Status::converged ? &stick.state : &free.state, &free.state}) {
+    best = detail::attempt_edge(w, sc, g, sigma * mu, detail::unknowns_from_state(*start, sc), inner);
+    if (best.status == Status::converged) break;
+  }
+  Solution slip;
+  slip.state = detail::state_from_unknowns(best.lm.u, sc);
+  slip.status = best.status;
+  slip.iterations = best.lm.iterations + free.iterations + stick.iterations;
+  slip.residual = best.lm.residual * sc.length;
+  Solution out = finish(slip, best.status == Status::converged
+                                  ? "slip: contact moved along the edge with |F_edge| = mu F_N"
+                                  : (best.status == Status::slipped_off
+                                         ? "slip: equilibrium would need contact beyond the tip"
+                                         : "slip: no frictional equilibrium within the iteration limit"));
+  detail::check_contact_side(w, approach_W, out);
+  return out;
+}
+
+}  // namespace vibrissa

@@ -1,0 +1,102 @@
+#pragma once
+// Levenberg-Marquardt for the square 3x3 systems of every contact solve. The residual is a generic functor
+// evaluated on Dual<3>, so each trial point yields the residual and its exact Jacobian in one pass.
+// Pure Newton steps are tried first (quadratic convergence near the root); damping grows only when a step
+// fails to reduce the residual, which globalises the method for thin, compliant tips.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "vibrissa/core/dual.hpp"
+
+namespace vibrissa::detail {
+
+struct LMResult {
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  double residual = 0.0;  ///< max-norm of the scaled residual
+  int iterations = 0;
+  bool converged = false;
+  bool at_upper_bound = false;  ///< the bounded unknown ended on its upper bound
+};
+
+struct LMBounds {
+  Eigen::Vector3d lower = Eigen::Vector3d::Constant(-1e300);
+  Eigen::Vector3d upper = Eigen::Vector3d::Constant(1e300);
+};
+
+template <class Residual>
+void evaluate_with_jacobian(Residual& f, const Eigen::Vector3d& u, Eigen::Vector3d& r, Eigen::Matrix3d& J) {
+  using D = Dual<3>;
+  const std::array<D, 3> x = {D::variable(u[0], 0), D::variable(u[1], 1), D::variable(u[2], 2)};
+  const std::array<D, 3> y = f(x);
+  for (int i = 0; i < 3; ++i) {
+    r[i] = y[static_cast<std::size_t>(i)].v;
+    for (int j = 0; j < 3; ++j) J(i, j) = y[static_cast<std::size_t>(i)].d[static_cast<std::size_t>(j)];
+  }
+}
+
+template <class Residual>
+LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bounds, double tolerance,
+                             int max_iterations) {
+  LMResult out;
+  u = u.cwiseMax(bounds.lower).cwiseMin(bounds.upper);
+  Eigen::Vector3d r;
+  Eigen::Matrix3d J;
+  evaluate_with_jacobian(f, u, r, J);
+  if (!r.allFinite()) return out;
+  double cost = r.squaredNorm();
+  double lambda = 0.0;
+  int it = 0;
+  for (; it < max_iterations; ++it) {
+    if (r.cwiseAbs().maxCoeff() <= tolerance) {
+      out.converged = true;
+      break;
+    }
+    const Eigen::Matrix3d A = J.transpose() * J;
+    const Eigen::Vector3d g = J.transpose() * r;
+    const double scale = std::max(A.diagonal().maxCoeff(), 1e-300);
+    bool accepted = false;
+    for (int attempt = 0; attempt < 30 && !accepted; ++attempt) {
+      Eigen::Vector3d step;
+      if (lambda == 0.0) {
+        step = -J.partialPivLu().solve(r);
+      } else {
+        Eigen::Matrix3d M = A;
+        M.diagonal() += lambda * (A.diagonal().cwiseMax(1e-12 * scale));
+        step = -M.ldlt().solve(g);
+      }
+      if (!step.allFinite()) {
+        lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
+        continue;
+      }
+      const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
+      Eigen::Vector3d r_new;
+      Eigen::Matrix3d J_new;
+      evaluate_with_jacobian(f, u_new, r_new, J_new);
+      const double cost_new = r_new.squaredNorm();
+      if (r_new.allFinite() && cost_new < cost) {
+        const bool tiny = (u_new - u).cwiseAbs().maxCoeff() <= 1e-16 * std::max(1.0, u.cwiseAbs().maxCoeff());
+        u = u_new;
+        r = r_new;
+        J = J_new;
+        cost = cost_new;
+        accepted = true;
+        lambda = lambda < 1e-9 * scale ? 0.0 : lambda / 10.0;
+        if (tiny) break;
+      } else {
+        lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
+      }
+    }
+    if (!accepted) break;  // stalled: no descent direction reduces the residual
+  }
+  out.u = u;
+  out.residual = r.cwiseAbs().maxCoeff();
+  out.converged = out.converged || out.residual <= tolerance;
+  out.iterations = it;
+  out.at_upper_bound = (u.array() >= bounds.upper.array() - 1e-12).any();
+  return out;
+}
+
+}  // namespace vibrissa::detail

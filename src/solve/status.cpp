@@ -1,0 +1,24 @@
+#include "vibrissa/solve/status.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace vibrissa {
+
+std::string_view to_string(Status status) {
+  switch (status) {
+    case Status::converged: return "converged";
+    case Status::no_contact: return "no_contact";
+    case Status::slipped_off: return "slipped_off";
+    case Status::not_converged: return "not_converged";
+  }
+  return "not_converged";
+}
+
+Status status_from_string(std::string_view name) {
+  for (Status s : {Status::converged, Status::no_contact, Status::slipped_off, Status::not_converged})
+    if (to_string(s) == name) return s;
+  throw std::invalid_argument("status: unknown value \"" + std::string(name) + "\"");
+}
+
+}  // namespace vibrissa
