@@ -3,13 +3,23 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 namespace vibrissa::cli {
 namespace {
 std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+  std::string out;
+  out.reserve(s.size() + 8);
+  out.push_back('\'');
+  for (char c : s) {
+    if (c == '\'') {
+      out.append("'\\''");
+    } else {
+      out.push_back(c);
+    }
+  }
+  out.push_back('\'');
+  return out;
 }
 }  // namespace
 
@@ -21,9 +31,10 @@ int run_figure_script(const std::string& script, const std::vector<std::string>&
     std::cerr << "vibrissa: warning: figure script not found: " << path << " (figures skipped)\n";
     return 2;
   }
-  std::string cmd = quote(VIBRISSA_PYTHON) + " " + quote(path.string());
-  for (const auto& a : args) cmd += " " + quote(a);
-  const int rc = std::system(cmd.c_str());
+  std::ostringstream cmd;
+  cmd << quote(VIBRISSA_PYTHON) << ' ' << quote(path.string());
+  for (const auto& a : args) cmd << ' ' << quote(a);
+  const int rc = std::system(cmd.str().c_str());
   if (rc != 0) std::cerr << "vibrissa: warning: figure script " << script << " failed (exit " << rc << ")\n";
   return rc;
 }

@@ -22,30 +22,58 @@ double speed_integral(const std::function<Eigen::Vector3d(double)>& dc, double a
   return half * sum;
 }
 
-// Natural cubic spline through (t_i, y_i): second derivatives m_i.
-std::vector<double> natural_spline_moments(const std::vector<double>& t, const std::vector<double>& y) {
+// Clamped cubic spline through (t_i, y_i) with end slopes d0, dn: second derivatives m_i.
+std::vector<double> clamped_spline_moments(const std::vector<double>& t, const std::vector<double>& y, double d0,
+                                           double dn) {
   const std::size_t n = t.size();
-  std::vector<double> m(n, 0.0);
-  if (n < 3) return m;
-  std::vector<double> a(n, 0.0), b(n, 0.0), c(n, 0.0), d(n, 0.0);
+  std::vector<double> a(n, 0.0), b(n, 0.0), c(n, 0.0), d(n, 0.0), m(n, 0.0);
+  const double h0 = t[1] - t[0], hn = t[n - 1] - t[n - 2];
+  b[0] = 2.0 * h0;
+  c[0] = h0;
+  d[0] = 6.0 * ((y[1] - y[0]) / h0 - d0);
   for (std::size_t i = 1; i + 1 < n; ++i) {
-    const double h0 = t[i] - t[i - 1], h1 = t[i + 1] - t[i];
-    a[i] = h0;
-    b[i] = 2.0 * (h0 + h1);
-    c[i] = h1;
-    d[i] = 6.0 * ((y[i + 1] - y[i]) / h1 - (y[i] - y[i - 1]) / h0);
+    const double hl = t[i] - t[i - 1], hr = t[i + 1] - t[i];
+    a[i] = hl;
+    b[i] = 2.0 * (hl + hr);
+    c[i] = hr;
+    d[i] = 6.0 * ((y[i + 1] - y[i]) / hr - (y[i] - y[i - 1]) / hl);
   }
-  // Thomas algorithm on rows 1..n-2 (m_0 = m_{n-1} = 0).
-  for (std::size_t i = 2; i + 1 < n; ++i) {
+  a[n - 1] = hn;
+  b[n - 1] = 2.0 * hn;
+  d[n - 1] = 6.0 * (dn - (y[n - 1] - y[n - 2]) / hn);
+  for (std::size_t i = 1; i < n; ++i) {  // Thomas algorithm
     const double f = a[i] / b[i - 1];
     b[i] -= f * c[i - 1];
     d[i] -= f * d[i - 1];
   }
-  for (std::size_t i = n - 2; i >= 1; --i) {
-    m[i] = (d[i] - c[i] * m[i + 1]) / b[i];
-    if (i == 1) break;
-  }
+  m[n - 1] = d[n - 1] / b[n - 1];
+  for (std::size_t i = n - 1; i-- > 0;) m[i] = (d[i] - c[i] * m[i + 1]) / b[i];
   return m;
+}
+
+// Derivative at t[0] of the polynomial through the first (up to 4) samples: O(h^3) end slopes, so the
+// spline's tangent at the base (the emergence direction, spec §2.1) is accurate.
+double end_slope(const std::vector<double>& t, const std::vector<double>& y, bool at_start) {
+  const std::size_t n = std::min<std::size_t>(4, t.size());
+  std::vector<double> ts(n), ys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = at_start ? i : t.size() - 1 - i;
+    ts[i] = t[k];
+    ys[i] = y[k];
+  }
+  double slope = 0.0;  // derivative of the Lagrange interpolant at ts[0]
+  for (std::size_t i = 0; i < n; ++i) {
+    double li = 0.0;  // l_i'(ts[0])
+    if (i == 0) {
+      for (std::size_t j = 1; j < n; ++j) li += 1.0 / (ts[0] - ts[j]);
+    } else {
+      li = 1.0 / (ts[i] - ts[0]);
+      for (std::size_t j = 1; j < n; ++j)
+        if (j != i) li *= (ts[0] - ts[j]) / (ts[i] - ts[j]);
+    }
+    slope += ys[i] * li;
+  }
+  return slope;
 }
 
 }  // namespace
@@ -98,7 +126,7 @@ std::vector<Eigen::Vector3d> resample_points(const std::vector<Eigen::Vector3d>&
   for (int d = 0; d < 3; ++d) {
     y[d].resize(n);
     for (std::size_t i = 0; i < n; ++i) y[d][i] = points[i][d];
-    m[d] = natural_spline_moments(t, y[d]);
+    m[d] = clamped_spline_moments(t, y[d], end_slope(t, y[d], true), end_slope(t, y[d], false));
   }
   auto interval = [&](double tt) {
     auto it = std::upper_bound(t.begin(), t.end(), tt);

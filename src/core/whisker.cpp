@@ -174,6 +174,13 @@ void Whisker::build(std::vector<Eigen::Vector3d> nodes_B, const WhiskerPropertie
     ct_[j] = 1.0 / (G * std::numbers::pi * r4 / 2.0);
   }
 
+  compliance_link_.resize(N);
+  for (std::size_t j = 0; j < N; ++j) {
+    const Eigen::AngleAxisd half(-0.5 * Eigen::AngleAxisd(Q_rest_[j]).angle(), Eigen::AngleAxisd(Q_rest_[j]).axis());
+    const Eigen::Matrix3d H = half.toRotationMatrix();
+    compliance_link_[j] = H * Eigen::Vector3d(ct_[j], cb_[j], cb_[j]).asDiagonal() * H.transpose();
+  }
+
   // Joint weights (docs/conventions.md, "Discretisation").
   weight_.resize(N);
   weight_load_base_.resize(N);

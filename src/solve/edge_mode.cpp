@@ -56,23 +56,30 @@ Solution solve_edge(const Whisker& w, const Edge& edge, std::optional<double> hi
     a = cold;
   }
   if (a.status == Status::not_converged) a = detail::continue_from_touch(w, sc, g, s_near, options, a);
+  if (a.status == Status::slipped_off) {  // released: the whisker is free again (rest shape, no force)
+    Solution off = detail::unloaded_solution(
+        w, Status::slipped_off,
+        a.folded ? "the contact equilibrium ends in a fold: the whisker snaps past the edge (push-past)"
+                 : "equilibrium would need contact beyond the tip: the whisker slips off",
+        options);
+    off.iterations = a.lm.iterations;
+    off.arc_length = std::min(a.lm.u[2] * sc.length, w.length());
+    return off;
+  }
   Solution out;
-  detail::fill_solution(w, detail::state_from_unknowns(a.lm.u, sc), options, g.direction.norm() > 0 ?
-                        std::optional<Eigen::Vector3d>(edge.direction.normalized()) : std::nullopt, out);
+  detail::fill_solution(w, detail::state_from_unknowns(a.lm.u, sc), options, edge.direction.normalized(), out);
   out.status = a.status;
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * sc.length;
-  switch (a.status) {
-    case Status::converged: out.message = "frictionless contact on the edge"; break;
-    case Status::slipped_off: out.message = "equilibrium would need contact beyond the tip: the whisker slips off"; break;
-    default: out.message = "no equilibrium on the edge within the iteration limit"; break;
-  }
+  out.message = a.status == Status::converged ? "frictionless contact on the edge"
+                                              : "no equilibrium on the edge within the iteration limit";
   detail::check_contact_side(w, approach_W, out);
   if (out.status == Status::converged && options.find_other_roots) {
     const double s_star = a.lm.u[2];
-    for (double s_try : {0.5 * s_star, s_star + 0.5 * (1.0 - s_star)}) {
+    for (double s_try : {0.25, 0.5, 0.75, 1.0}) {
+      if (std::abs(s_try - s_star) < 0.05) continue;
       const auto other = detail::attempt_edge(w, sc, g, 0.0, Eigen::Vector3d(0.0, 0.0, s_try), options);
-      if (other.status == Status::converged && std::abs(other.lm.u[2] - s_star) > 1e-6) {
+      if (other.status == Status::converged && std::abs(other.lm.u[2] - s_star) > 0.01) {
         out.other_root_arc_length = other.lm.u[2] * sc.length;
         break;
       }

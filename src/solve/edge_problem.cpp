@@ -63,7 +63,10 @@ EdgeAttempt continue_from_touch(const Whisker& w, const Scales& sc, const EdgeGe
       step *= 0.5;
     }
   }
-  if (lambda < 1.0 && last.status == Status::converged) last.status = Status::not_converged;
+  if (lambda < 1.0) {  // a fold: no equilibrium continues the contact from first touch (snap-through)
+    last.status = Status::slipped_off;
+    last.folded = true;
+  }
   last.lm.iterations = iterations;
   return last;
 }

@@ -21,6 +21,7 @@ EdgeGeometryB edge_in_body(const Whisker& w, const Edge& edge);
 struct EdgeAttempt {
   LMResult lm;
   Status status = Status::not_converged;
+  bool folded = false;  ///< the equilibrium branch from first touch ends before the target: push-past
 };
 
 /// Solves the edge equations with friction factor c from scaled unknowns u0.

@@ -45,15 +45,38 @@ Solution solve_dead_load(const Whisker& w, const Eigen::Vector3d& force_W, doubl
   // Start from the rest-frame components of the load (or the warm state).
   Eigen::Vector3d u0 = w.rest_link_frames_B()[static_cast<std::size_t>(k)].transpose() * target_B;
   if (warm) u0 = Eigen::Vector3d(warm->force_x, warm->force_y, warm->force_z) / sc.force;
-  auto residual = [&](const auto& u) {
-    using S = std::decay_t<decltype(u[0])>;
-    const V3<S> F(u[0] * sc.force, u[1] * sc.force, u[2] * sc.force);
-    const auto c = deflect<S>(w, F, V3<S>(S(0.0), S(0.0), S(0.0)), S(arc_length));
-    return std::array<S, 3>{c.force_B.x / sc.force - target_B.x(), c.force_B.y / sc.force - target_B.y(),
-                            c.force_B.z / sc.force - target_B.z()};
+  auto solve_for = [&](const Eigen::Vector3d& goal, const Eigen::Vector3d& start) {
+    auto residual = [&](const auto& u) {
+      using S = std::decay_t<decltype(u[0])>;
+      const V3<S> F(u[0] * sc.force, u[1] * sc.force, u[2] * sc.force);
+      const auto c = deflect<S>(w, F, V3<S>(S(0.0), S(0.0), S(0.0)), S(arc_length));
+      return std::array<S, 3>{c.force_B.x / sc.force - goal.x(), c.force_B.y / sc.force - goal.y(),
+                              c.force_B.z / sc.force - goal.z()};
+    };
+    const double tol = std::max(options.tolerance / sc.length, 1e-14 * std::max(1.0, goal.norm()));
+    return detail::levenberg_marquardt(residual, start, detail::LMBounds{}, tol, options.max_iterations);
   };
-  const double tol = std::max(options.tolerance / sc.length, 1e-14 * std::max(1.0, target_B.norm()));
-  const auto lm = detail::levenberg_marquardt(residual, u0, detail::LMBounds{}, tol, options.max_iterations);
+  auto lm = solve_for(target_B, u0);
+  if (!lm.converged) {  // continuation in the load magnitude from the unloaded rod
+    Eigen::Vector3d u = w.rest_link_frames_B()[static_cast<std::size_t>(k)].transpose() * target_B * 0.0;
+    double lambda = 0.0, step = 0.125;
+    int iterations = lm.iterations;
+    while (lambda < 1.0 && step > 1.0 / 4096.0) {
+      const double next = std::min(1.0, lambda + step);
+      const auto a = solve_for(next * target_B, u.isZero(0.0) ? Eigen::Vector3d(w.rest_link_frames_B()[static_cast<std::size_t>(k)].transpose() * next * target_B) : u);
+      iterations += a.iterations;
+      if (a.converged) {
+        u = a.u;
+        lambda = next;
+        lm = a;
+        step = std::min(2.0 * step, 0.25);
+      } else {
+        step *= 0.5;
+      }
+    }
+    lm.converged = lambda >= 1.0 && lm.converged;
+    lm.iterations = iterations;
+  }
   LoadState state;
   state.force_x = lm.u[0] * sc.force;
   state.force_y = lm.u[1] * sc.force;

@@ -63,6 +63,15 @@ Solution solve_point(const Whisker& w, const Eigen::Vector3d& point_W, std::opti
     u0 = Eigen::Vector3d(0.0, 0.0, s0 / sc.length);
   }
   PointAttempt a = attempt_point(w, sc, target_B, u0, options);
+  if (hint && !warm) {  // the root nearest the hint: also start a little to either side, keep the nearest
+    const double h = *hint / sc.length;
+    for (double ds : {-0.1, 0.1}) {
+      const PointAttempt b = attempt_point(w, sc, target_B, Eigen::Vector3d(0.0, 0.0, std::clamp(h + ds, 1e-6, 1.0)), options);
+      if (b.status == Status::converged &&
+          (a.status != Status::converged || std::abs(b.lm.u[2] - h) < std::abs(a.lm.u[2] - h) - 1e-9))
+        a = b;
+    }
+  }
   if (a.status == Status::not_converged && warm) {  // a bad warm start: fall back to the cold rule
     const double s0 = detail::arc_length_at_distance(w, distance);
     PointAttempt cold = attempt_point(w, sc, target_B, Eigen::Vector3d(0.0, 0.0, s0 / sc.length), options);
@@ -82,9 +91,10 @@ Solution solve_point(const Whisker& w, const Eigen::Vector3d& point_W, std::opti
   }
   if (a.status == Status::converged && options.find_other_roots) {
     const double s_star = a.lm.u[2];
-    for (double s_try : {0.5 * s_star, s_star + 0.5 * (1.0 - s_star)}) {
+    for (double s_try : {0.25, 0.5, 0.75, 1.0}) {  // probes along the whisker, away from the root found
+      if (std::abs(s_try - s_star) < 0.05) continue;
       const PointAttempt other = attempt_point(w, sc, target_B, Eigen::Vector3d(0.0, 0.0, s_try), options);
-      if (other.status == Status::converged && std::abs(other.lm.u[2] - s_star) > 1e-6) {
+      if (other.status == Status::converged && std::abs(other.lm.u[2] - s_star) > 0.01) {
         out.other_root_arc_length = other.lm.u[2] * sc.length;
         break;
       }

@@ -116,7 +116,16 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
     } else {
       M = S(weight[u]) * (cross(v[0], v[1]) + v[2]);
     }
-    V3<S> omega(ct[u] * M.x, cb[u] * M.y, cb[u] * M.z);
+    V3<S> omega;
+    if (scheme == Scheme::paper) {  // the published split: components in the distal link's own frame
+      omega = V3<S>(ct[u] * M.x, cb[u] * M.y, cb[u] * M.z);
+    } else {
+      // Split twist from bending in the joint's mid frame (rest half-rotation in the compliance matrix, the
+      // elastic half-rotation by one predictor-corrector step): second order for curved, twisted rods.
+      const Eigen::Matrix3d& K = w.joint_compliance_link()[u];
+      const V3<S> predictor = mul(K, M);
+      omega = mul(K, M + S(0.5) * cross(predictor, M));
+    }
     if (j == 0 && base_extra > 0.0) {  // follicle spring in series (moment, not weighted)
       const V3<S> Mb = cross(v[0], v[1]) + v[2];
       omega.y += base_extra * Mb.y;

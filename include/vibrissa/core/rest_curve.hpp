@@ -14,7 +14,7 @@ std::vector<Eigen::Vector3d> resample_by_arc_length(const std::function<Eigen::V
                                                     const std::function<Eigen::Vector3d(double)>& dc,
                                                     double t_end, int links, double* total_length = nullptr);
 
-/// Nodes (N+1) of the natural cubic spline through `points` (chord-length parametrised), equally spaced in
+/// Nodes (N+1) of the clamped cubic spline (end slopes from 4-point interpolation) through `points` (chord-length parametrised), equally spaced in
 /// arc length; `tangent0` receives the unit tangent of the spline at the base.
 std::vector<Eigen::Vector3d> resample_points(const std::vector<Eigen::Vector3d>& points, int links,
                                              Eigen::Vector3d* tangent0 = nullptr);

@@ -85,6 +85,10 @@ class Whisker {
   /// Weight of the last loaded joint j for a load h past node j: weight_at_load_base + h * weight_at_load_slope.
   [[nodiscard]] double loaded_joint_weight_base(int j) const { return weight_load_base_[static_cast<std::size_t>(j)]; }
   [[nodiscard]] double loaded_joint_weight_slope() const { return weight_load_slope_; }
+  /// Second-order scheme: compliance per unit weight of joint j expressed in link j's frame,
+  /// H diag(1/GJ, 1/EI, 1/EI) H^T with H the rotation to the joint's mid frame (half the rest rotation), so
+  /// that twist and bending are split in the frame halfway between the two links [1/(N·m^2)].
+  [[nodiscard]] const std::vector<Eigen::Matrix3d>& joint_compliance_link() const { return compliance_link_; }
   /// Rest curvature vector across link k in its own frame [rad/m]: the second-order scheme turns the
   /// load frame by (h - l_k/2) times it, so that "normal to the whisker" follows the smooth rest tangent
   /// rather than the chord (zero for the paper's scheme, whose load is normal to the link).
@@ -113,6 +117,7 @@ class Whisker {
   std::vector<Eigen::Matrix3d> Q_rest_, R_link_B_;
   std::vector<double> radius_, youngs_;
   std::vector<Eigen::Vector3d> load_curvature_;
+  std::vector<Eigen::Matrix3d> compliance_link_;
   std::vector<double> cb_, ct_, weight_, weight_load_base_;
   double weight_load_slope_ = 0.0;
   double base_extra_compliance_ = 0.0;

@@ -1,0 +1,29 @@
+#pragma once
+// Shared fixtures for the core and solve tests: whiskers with closed-form answers.
+#include <cmath>
+#include <numbers>
+
+#include "vibrissa/core/whisker.hpp"
+
+namespace vibrissa::test {
+
+/// Straight uniform rod (taper ratio 1), clamped: the textbook cantilever.
+inline Whisker uniform_rod(int links, Scheme scheme = Scheme::second_order, double length = 0.05) {
+  WhiskerProperties p;
+  p.links = links;
+  p.taper_ratio = 1.0;
+  p.scheme = scheme;
+  p.base = BaseJoint::rigid;
+  return Whisker::from_parabola(length, 0.0, p);
+}
+
+/// A realistic tapered, curved whisker (spec §2.1 material, 40 mm, y = 12 x^2).
+inline Whisker rat_whisker(int links = 100, const Pose& pose = {}) {
+  WhiskerProperties p;
+  p.links = links;
+  return Whisker::from_parabola(0.040, 12.0, p, pose);
+}
+
+inline double deg(double d) { return d * std::numbers::pi / 180.0; }
+
+}  // namespace vibrissa::test

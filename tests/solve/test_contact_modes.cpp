@@ -1,0 +1,223 @@
+// Contact-point, edge and frictional edge modes: roots, statuses, invariances, Jacobians.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "../core/test_helpers.hpp"
+#include "vibrissa/core/chain.hpp"
+#include "vibrissa/solve/solvers.hpp"
+
+namespace vibrissa {
+namespace {
+
+using test::deg;
+using test::rat_whisker;
+
+Edge vertical_peg(double x, double y) {
+  Edge e;
+  e.point = {x, y, 0.0};
+  e.direction = {0.0, 0.0, 1.0};
+  return e;
+}
+
+Pose tilted_pose() {
+  Pose p;
+  p.theta = deg(10);
+  p.phi = deg(10);
+  p.zeta = deg(30);
+  return p;
+}
+
+TEST(PointMode, RecoversTheForceModeLoad) {
+  const Whisker w = rat_whisker(100, tilted_pose());
+  const Solution forward = solve_force(w, 1.5e-4, 0.0213, 0.8);
+  const Solution sol = solve_point(w, forward.contact_point, 0.0213);
+  ASSERT_EQ(sol.status, Status::converged) << sol.message;
+  EXPECT_LE(sol.residual, 1e-12);
+  EXPECT_NEAR(sol.arc_length, 0.0213, 1e-10);
+  EXPECT_NEAR(sol.force_magnitude / 1.5e-4, 1.0, 1e-8);
+  EXPECT_NEAR(sol.angle, 0.8, 1e-8);
+}
+
+TEST(PointMode, ReportsAndSelectsAnotherRoot) {
+  // A contact nearer the base with a smaller force can reach the same point (issue 2, item 6).
+  const Whisker w = rat_whisker();
+  const Solution far = solve_force(w, 1e-4, 0.030, 0.3);
+  SolveOptions o;
+  o.find_other_roots = true;
+  const Solution cold = solve_point(w, far.contact_point, std::nullopt, o);
+  ASSERT_EQ(cold.status, Status::converged);
+  ASSERT_TRUE(cold.other_root_arc_length.has_value());
+  const double s_other = std::abs(cold.arc_length - 0.030) < 1e-8 ? *cold.other_root_arc_length : cold.arc_length;
+  const Solution a = solve_point(w, far.contact_point, 0.030);
+  const Solution b = solve_point(w, far.contact_point, s_other);
+  EXPECT_NEAR(a.arc_length, 0.030, 1e-9);
+  EXPECT_NEAR(b.arc_length, s_other, 1e-9);
+  EXPECT_GT(std::abs(a.arc_length - b.arc_length), 1e-3);
+  EXPECT_LE((b.contact_point - far.contact_point).norm(), 1e-12);
+}
+
+TEST(PointMode, OutOfReachIsNoContactNotNaN) {
+  const Whisker w = rat_whisker();
+  const Solution s = solve_point(w, Eigen::Vector3d(0.1, 0.0, 0.0));
+  EXPECT_EQ(s.status, Status::no_contact);
+  EXPECT_TRUE(s.force.allFinite());
+  EXPECT_EQ(s.force_magnitude, 0.0);
+}
+
+TEST(EdgeMode, ContactOnLineForceNormalToLineAndWhisker) {
+  const Whisker w = rat_whisker(100, tilted_pose());
+  const Edge peg = vertical_peg(0.020, 0.0);
+  const Solution s = solve_edge(w, peg);
+  ASSERT_EQ(s.status, Status::converged) << s.message;
+  const Eigen::Vector3d d = peg.direction.normalized();
+  Eigen::Vector3d off = s.contact_point - peg.point;
+  off -= off.dot(d) * d;
+  EXPECT_LE(off.norm(), 1e-12);
+  EXPECT_LE(std::abs(s.force.dot(d)), 1e-12 * s.force_magnitude);
+  EXPECT_NEAR(*s.edge_force, 0.0, 1e-15);
+  EXPECT_NEAR(*s.normal_force, s.force_magnitude, 1e-15);
+  // Normal to the whisker: orthogonal to the deflected tangent at the contact.
+  const std::size_t k = static_cast<std::size_t>(s.arc_length / 0.0004);
+  const Eigen::Vector3d t = (s.shape[k + 1] - s.shape[k]).normalized();
+  EXPECT_LT(std::abs(s.force.normalized().dot(t)), 0.02);  // link vs smooth tangent: O(ds) in angle
+  EXPECT_GT(std::abs(s.contact_point.z()), 1e-3);  // it slipped up the peg: the frictionless answer
+}
+
+TEST(EdgeMode, OutOfReachWrongSideAndSlipOff) {
+  const Whisker w = rat_whisker();
+  EXPECT_EQ(solve_edge(w, vertical_peg(0.2, 0.0)).status, Status::no_contact);
+  // The peg in front of the whisker (concave side) would have to pull when approached by protraction.
+  const Edge front = vertical_peg(0.020, 0.012);
+  EXPECT_EQ(solve_edge(w, front, std::nullopt, {}, nullptr, Eigen::Vector3d(0, 1, 0)).status, Status::no_contact);
+  // Near the tip and deep: equilibrium needs contact beyond the tip.
+  const Edge deep = vertical_peg(0.037, -0.004);
+  EXPECT_EQ(solve_edge(w, deep).status, Status::slipped_off);
+  const Solution s = solve_edge(w, deep);
+  EXPECT_TRUE(s.force.allFinite());
+  EXPECT_TRUE(std::isfinite(s.arc_length));
+}
+
+TEST(EdgeMode, WarmStartFollowsTheSameBranchInFewIterations) {
+  const Edge peg = vertical_peg(0.020, 0.0);
+  LoadState state;
+  const LoadState* warm = nullptr;
+  for (double th = 0.0; th <= 10.0; th += 1.0) {
+    Pose p = tilted_pose();
+    p.theta = deg(th);
+    const Whisker w = rat_whisker(100, p);
+    const Solution s = solve_edge(w, peg, std::nullopt, {}, warm);
+    const Solution cold = solve_edge(w, peg);
+    ASSERT_EQ(s.status, Status::converged);
+    EXPECT_NEAR(s.arc_length, cold.arc_length, 1e-10);
+    if (warm) {
+      EXPECT_LE(s.iterations, 5);
+    }
+    state = s.state;
+    warm = &state;
+  }
+}
+
+TEST(FrictionalEdge, LimitsAndFrictionCone) {
+  const Whisker w = rat_whisker(100, tilted_pose());
+  const Edge peg = vertical_peg(0.020, 0.0);
+  const Solution free = solve_edge(w, peg);
+  const Eigen::Vector3d previous = free.contact_point - Eigen::Vector3d(0, 0, 0.003);
+  // mu = 0: the frictionless edge mode.
+  const Solution zero = solve_frictional_edge(w, peg, 0.0, previous);
+  EXPECT_LE((zero.contact_point - free.contact_point).norm(), 1e-12);
+  // mu -> infinity: contact-point mode at the stuck point.
+  const Solution stuck = solve_frictional_edge(w, peg, 1e6, previous);
+  const Solution point = solve_point(w, previous, std::nullopt, {}, nullptr, peg.direction);
+  ASSERT_EQ(stuck.status, Status::converged);
+  EXPECT_LE((stuck.contact_point - previous).norm(), 1e-12);
+  EXPECT_LE((stuck.force - point.force).norm(), 1e-8 * point.force_magnitude);
+  // In between: on the cone, between the stuck and the frictionless points (§3.1).
+  for (double mu : {0.05, 0.2, 0.48}) {
+    const Solution s = solve_frictional_edge(w, peg, mu, previous);
+    ASSERT_EQ(s.status, Status::converged) << s.message;
+    EXPECT_LE(std::abs(*s.edge_force), mu * *s.normal_force * (1 + 1e-9));
+    const double z = s.contact_point.z();
+    EXPECT_GE(z, std::min(previous.z(), free.contact_point.z()) - 1e-12);
+    EXPECT_LE(z, std::max(previous.z(), free.contact_point.z()) + 1e-12);
+  }
+}
+
+TEST(Invariance, RigidMotionOfTheSceneRotatesEveryOutput) {
+  const Whisker w = rat_whisker(100, tilted_pose());
+  const Edge peg = vertical_peg(0.020, 0.0);
+  const Solution a = solve_edge(w, peg);
+  // Rotate and translate whisker pose and edge together.
+  const Eigen::Matrix3d Q = rotation_from_angles(0.7, -0.4, 1.1);
+  const Eigen::Vector3d t(0.01, -0.02, 0.005);
+  std::vector<Eigen::Vector3d> pts;
+  for (const auto& n : w.rest_nodes_B()) pts.push_back(Q * w.to_world(n) + t);
+  const Whisker w2 = Whisker::from_points(pts, WhiskerProperties{});
+  Edge peg2;
+  peg2.point = Q * peg.point + t;
+  peg2.direction = Q * peg.direction;
+  const Solution b = solve_edge(w2, peg2);
+  ASSERT_EQ(b.status, Status::converged);
+  EXPECT_NEAR(b.arc_length, a.arc_length, 1e-9);
+  EXPECT_LT((b.contact_point - (Q * a.contact_point + t)).norm(), 1e-9);
+  EXPECT_LT((b.force - Q * a.force).norm(), 1e-6 * a.force_magnitude);
+  EXPECT_LT((b.moment - Q * a.moment).norm(), 1e-6 * a.moment.norm());
+  EXPECT_LT((b.whisker_frame.force - a.whisker_frame.force).norm(), 1e-6 * a.force_magnitude);
+  EXPECT_NEAR(b.whisker_frame.MD, a.whisker_frame.MD, 1e-6);
+}
+
+TEST(Equilibrium, BaseMomentMatchesTheBaseSpring) {
+  // The moment about the base (r x F) must be what the first joint's spring carries: omega_0 / (w_0 / EI_0).
+  WhiskerProperties p;
+  p.scheme = Scheme::paper;  // full-link spring at the base (elastic)
+  const Whisker w = Whisker::from_parabola(0.04, 12.0, p);
+  const Solution s = solve_force(w, 2e-4, 0.025, 0.6);
+  std::vector<Eigen::Vector3d> omega(100);
+  const double Fy = s.state.force_y, Fz = s.state.force_z;
+  deflect<double>(w, V3<double>(0, Fy, Fz), V3<double>(0, 0, 0), 0.025, omega.data());
+  // Joint 0's moment in link 0's frame -> B via the rest and deformation rotations.
+  const double wgt = w.joint_weight()[0];
+  const Eigen::Vector3d M_link(omega[0].x() / (wgt * w.torsion_compliance()[0]), omega[0].y() / (wgt * w.bending_compliance()[0]),
+                               omega[0].z() / (wgt * w.bending_compliance()[0]));
+  const Eigen::Matrix3d R0 = w.rest_joint_rotations()[0] * joint_rotation_matrix(Scheme::paper, omega[0]);
+  EXPECT_LT((R0 * M_link - s.whisker_frame.moment).norm(), 1e-9 * s.whisker_frame.moment.norm());
+}
+
+TEST(Jacobian, DualNumbersMatchFiniteDifferences) {
+  const Whisker w = rat_whisker(100, tilted_pose());
+  const double Fy = 1.2e-4, Fz = -0.7e-4, s = 0.0231;
+  using D = Dual<3>;
+  const auto c = deflect<D>(w, V3<D>(D(0.0), D::variable(Fy, 0), D::variable(Fz, 1)), V3<D>(D(0.0), D(0.0), D(0.0)),
+                            D::variable(s, 2));
+  const double h[3] = {1e-9, 1e-9, 1e-8};
+  for (int j = 0; j < 3; ++j) {
+    double x[3] = {Fy, Fz, s};
+    x[j] += h[j];
+    const auto p = deflect<double>(w, V3<double>(0, x[0], x[1]), V3<double>(0, 0, 0), x[2]);
+    x[j] -= 2 * h[j];
+    const auto m = deflect<double>(w, V3<double>(0, x[0], x[1]), V3<double>(0, 0, 0), x[2]);
+    const Eigen::Vector3d fd = (to_eigen(p.p_contact_B) - to_eigen(m.p_contact_B)) / (2 * h[j]);
+    const Eigen::Vector3d ad(c.p_contact_B.x.d[j], c.p_contact_B.y.d[j], c.p_contact_B.z.d[j]);
+    EXPECT_LT((fd - ad).norm(), 1e-6 * ad.norm()) << "column " << j;
+  }
+}
+
+TEST(Errors, BadLoadsNameTheField) {
+  const Whisker w = rat_whisker();
+  Edge e = vertical_peg(0.02, 0.0);
+  e.direction = Eigen::Vector3d::Zero();
+  EXPECT_THROW(solve_edge(w, e), std::invalid_argument);
+  try {
+    solve_edge(w, e);
+  } catch (const std::invalid_argument& ex) {
+    EXPECT_NE(std::string(ex.what()).find("edge.direction"), std::string::npos);
+  }
+  EXPECT_THROW(solve_force(w, 1e-4, 0.05, 0.0), std::invalid_argument);  // beyond the tip
+  EXPECT_THROW(solve_force(w, std::nan(""), 0.02, 0.0), std::invalid_argument);
+  EXPECT_THROW(solve_point(w, Eigen::Vector3d(std::nan(""), 0, 0)), std::invalid_argument);
+  EXPECT_THROW(solve_frictional_edge(w, vertical_peg(0.02, 0), -0.1, Eigen::Vector3d::Zero()), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vibrissa
