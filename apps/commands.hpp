@@ -6,5 +6,8 @@ namespace vibrissa::cli {
 
 void register_solve(CLI::App& app);
 void register_demo(CLI::App& app);
+void register_trial(CLI::App& app);
+void register_synth(CLI::App& app);
+void register_array(CLI::App& app);
 
 }  // namespace vibrissa::cli

@@ -10,6 +10,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "vibrissa 0.1.0");
   vibrissa::cli::register_solve(app);
   vibrissa::cli::register_demo(app);
+  vibrissa::cli::register_trial(app);
+  vibrissa::cli::register_synth(app);
+  vibrissa::cli::register_array(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,1 +1,13 @@
-# Sources of the array layer
+# Sources of the array layer (rat array morphology, whisking kinematics, scenes, simulation, output).
+target_sources(vibrissa PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/morphology.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/kinematics.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/head.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/objects.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/crossing.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/error_bound.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/simulation.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/config.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sweep.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/h5_writer.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/output.cpp)

@@ -65,8 +65,8 @@ Solution solve_point(const Whisker& w, const Eigen::Vector3d& point_W, std::opti
   PointAttempt a = attempt_point(w, sc, target_B, u0, options);
   if (hint && !warm) {  // the root nearest the hint: also start a little to either side, keep the nearest
     const double h = *hint / sc.length;
-    for (double ds : {-0.1, 0.1}) {
-      const PointAttempt b = attempt_point(w, sc, target_B, Eigen::Vector3d(0.0, 0.0, std::clamp(h + ds, 1e-6, 1.0)), options);
+    for (double s_try : {h - 0.1, h + 0.1, 0.25, 0.5, 0.75, 1.0}) {  // basins are not intervals: probe widely
+      const PointAttempt b = attempt_point(w, sc, target_B, Eigen::Vector3d(0.0, 0.0, std::clamp(s_try, 1e-6, 1.0)), options);
       if (b.status == Status::converged &&
           (a.status != Status::converged || std::abs(b.lm.u[2] - h) < std::abs(a.lm.u[2] - h) - 1e-9))
         a = b;

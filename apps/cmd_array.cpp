@@ -1,0 +1,123 @@
+// `vibrissa array [CONFIG] [--out DIR] [--csv] [--no-figures]`: the full rat array whisking against edges,
+// pegs or prisms for one or more head pitches (spec §3.4, §4.4, Fig. 4a; docs/array.md). Writes array.h5,
+// summary.json, pitch_summary.csv, optional array.csv, and figures.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <numbers>
+
+#include "commands.hpp"
+#include "progress.hpp"
+#include "run_python.hpp"
+#include "vibrissa/array/config.hpp"
+#include "vibrissa/array/output.hpp"
+#include "vibrissa/array/sweep.hpp"
+
+namespace vibrissa::cli {
+
+namespace {
+struct ArrayArgs {
+  std::string config, out = "array_results", pitches;
+  bool csv = false, no_figures = false, gif = false, print_default = false;
+  int threads = 0;
+};
+
+std::vector<double> parse_pitch_list(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  std::string cell;
+  while (std::getline(in, cell, ',')) {
+    try {
+      std::size_t used = 0;
+      out.push_back(std::stod(cell, &used) * std::numbers::pi / 180.0);
+      if (used != cell.size() || !std::isfinite(out.back())) throw std::invalid_argument(cell);
+    } catch (const std::exception&) {
+      throw std::invalid_argument("--pitches must be a comma-separated list of angles in degrees, got '" + text + "'");
+    }
+  }
+  return out;
+}
+}  // namespace
+
+void register_array(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "array", "Simulate the rat whisker array whisking against objects, over head pitches (Fig. 4a; docs/array.md)");
+  auto a = std::make_shared<ArrayArgs>();
+  cmd->add_option("CONFIG", a->config, "JSON configuration (default: built-in right-side whisk against a peg)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", a->out, "output directory")->capture_default_str();
+  cmd->add_option("--pitches", a->pitches, "override head.pitches_deg, e.g. -20,-10,0,10,20");
+  cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--csv", a->csv, "also write array.csv (one row per pitch, whisker and frame)");
+  cmd->add_flag("--gif", a->gif, "write the animation as GIF instead of MP4");
+  cmd->add_flag("--no-figures", a->no_figures, "skip the animation and PNG figures");
+  cmd->add_flag("--print-default-config", a->print_default, "print the built-in configuration and exit");
+  cmd->callback([a] {
+    namespace fs = std::filesystem;
+    if (a->print_default) {
+      std::cout << std::setw(2) << array::default_config_json() << "\n";
+      return;
+    }
+    nlohmann::json j = a->config.empty() ? array::default_config_json() : array::read_config_json(a->config);
+    if (!a->pitches.empty()) {
+      nlohmann::json list = nlohmann::json::array();
+      for (double p : parse_pitch_list(a->pitches)) list.push_back(p * 180.0 / std::numbers::pi);
+      j["head"]["pitches_deg"] = list;
+    }
+    if (a->threads > 0) j["threads"] = a->threads;
+    const fs::path base = a->config.empty() ? fs::current_path() : fs::path(a->config).parent_path();
+    const array::SimulationConfig config = array::config_from_json(j, base);
+    const fs::path out(a->out);
+    fs::create_directories(out);
+    {
+      std::ofstream used(out / "config.json");
+      used << std::setw(2) << j << "\n";
+    }
+    const std::size_t total = config.pitches.size() * config.morphology.whiskers.size() * config.times.size();
+    std::cout << "vibrissa array: " << config.morphology.whiskers.size() << " whiskers (" << config.morphology.source
+              << ") x " << config.times.size() << " frames x " << config.pitches.size() << " head pitch(es)\n";
+    array::ArrayResult result;
+    {
+      Progress progress("simulating", total);
+      std::size_t shown = 0;
+      result = array::simulate_array(config, [&](std::size_t done, std::size_t) {
+        if (done > shown) progress.advance(done - shown);
+        shown = done;
+      });
+    }
+    std::cout << "simulated " << total << " whisker-frames in " << std::fixed << std::setprecision(2)
+              << result.wall_seconds << " s (" << result.solves << " edge solves";
+    if (result.failed_solves) std::cout << ", " << result.failed_solves << " without equilibrium -> pushed past";
+    std::cout << ")\n";
+    array::write_array_h5(result, config, out / "array.h5");
+    if (a->csv) array::write_array_csv(result, out / "array.csv");
+    array::write_pitch_summary_csv(result, out / "pitch_summary.csv");
+    {
+      std::ofstream s(out / "summary.json");
+      s << std::setw(2) << array::summary_json(result, config) << "\n";
+    }
+    std::cout << std::setprecision(3);
+    std::cout << "pitch_deg  touching  pushed_past  peak_MB_uNm (whisker)  mean_peak_MB_uNm\n";
+    for (const array::PitchSummary& s : array::summarize_pitches(result))
+      std::cout << std::setw(9) << s.pitch * 180.0 / std::numbers::pi << std::setw(10) << s.whiskers_touching
+                << std::setw(13) << s.whiskers_pushed_past << std::setw(13) << s.peak_MB * 1e6 << " ("
+                << (s.peak_MB_whisker.empty() ? "-" : s.peak_MB_whisker) << ")" << std::setw(18)
+                << s.mean_peak_MB * 1e6 << "\n";
+    std::cout.flush();
+    if (!a->no_figures) {
+      const std::string h5 = (out / "array.h5").string();
+      run_figure_script("array_traces.py", {h5, (out / "array_traces.png").string()});
+      run_figure_script("array_animation.py",
+                        {h5, (out / (a->gif ? "array_animation.gif" : "array_animation.mp4")).string()});
+      if (config.pitches.size() > 1)
+        run_figure_script("array_pitch_sweep.py", {h5, (out / "pitch_sweep.png").string()});
+    }
+    std::cout << "wrote " << out.string() << "/{array.h5, summary.json, pitch_summary.csv"
+              << (a->csv ? ", array.csv" : "") << (a->no_figures ? "" : ", figures") << "}\n";
+  });
+}
+
+}  // namespace vibrissa::cli

@@ -1,0 +1,90 @@
+// `vibrissa trial TRIAL [--out DIR]`: pre-process a tracked trial, solve every contact frame in
+// contact-point, edge (and, with --mu, frictional edge) mode, run the paper's analyses and write
+// frames.csv, frames.h5, summary.json and figures (docs/trials.md).
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "progress.hpp"
+#include "run_python.hpp"
+#include "vibrissa/io/trial_io.hpp"
+#include "vibrissa/io/trial_results.hpp"
+
+namespace vibrissa::cli {
+
+namespace {
+struct TrialArgs {
+  std::string trial, out;
+  double mu = -1.0, mu_eq7 = -1.0, cutoff = 85.0;
+  int order = 2;
+  bool no_filter = false, rest_per_contact = false, no_figures = false, no_roll_fit = false;
+};
+}  // namespace
+
+void register_trial(CLI::App& app) {
+  auto* cmd = app.add_subcommand("trial", "Analyse a whisking trial against a peg (spec §2.3-§3.4; docs/trials.md)");
+  auto a = std::make_shared<TrialArgs>();
+  cmd->add_option("TRIAL", a->trial, "trial file (.csv, .h5/.hdf5, .mat)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--out", a->out, "output directory (default: <trial name>_results next to the trial)");
+  cmd->add_option("--mu", a->mu, "also run frictional edge mode with this friction coefficient")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--mu-eq7", a->mu_eq7, "friction coefficient for eq. (7) (default: median mu of contact-point mode)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--cutoff", a->cutoff, "low-pass cutoff [Hz] (spec §2.3: 85)")->check(CLI::PositiveNumber);
+  cmd->add_option("--filter-order", a->order, "Butterworth order per pass (2 or 4; filtfilt doubles it)")
+      ->check(CLI::IsMember({2, 4}));
+  cmd->add_flag("--no-filter", a->no_filter, "do not low-pass filter the tracked signals");
+  cmd->add_flag("--no-roll-fit", a->no_roll_fit, "use the tracked zeta in contact frames instead of the theta fit");
+  cmd->add_flag("--rest-shape-per-contact", a->rest_per_contact,
+                "use the tracked shape at the end of each contact period as its undeflected shape (spec §2.3)");
+  cmd->add_flag("--no-figures", a->no_figures, "skip the PNG figures");
+  cmd->callback([a] {
+    namespace fs = std::filesystem;
+    const fs::path in(a->trial);
+    const fs::path out = a->out.empty() ? in.parent_path() / (in.stem().string() + "_results") : fs::path(a->out);
+    const trial::Trial tr = io::read_trial(a->trial);
+    trial::PipelineOptions opt;
+    opt.preprocess.filter = !a->no_filter;
+    opt.preprocess.cutoff_hz = a->cutoff;
+    opt.preprocess.filter_order = a->order;
+    opt.preprocess.roll_from_theta = !a->no_roll_fit;
+    opt.preprocess.rest_shape_per_contact = a->rest_per_contact;
+    if (a->mu >= 0.0) opt.mu = a->mu;
+    std::size_t contact = 0;
+    for (auto c : tr.contact) contact += c;
+    Progress progress("solving contact frames", contact);
+    opt.progress = [&progress](std::size_t k) { progress.advance(k); };
+    const auto t0 = std::chrono::steady_clock::now();
+    const trial::PipelineResult result = trial::run_pipeline(tr, opt);
+    trial::AnalysisOptions aopt;
+    if (a->mu_eq7 >= 0.0) aopt.mu_eq7 = a->mu_eq7;
+    const trial::TrialAnalysis analysis = trial::analyse_trial(result, aopt);
+    progress.finish();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    fs::create_directories(out);
+    const io::ResultTable table = io::result_table(result, analysis);
+    io::write_result_table_csv(table, (out / "frames.csv").string());
+    io::write_result_table_h5(table, (out / "frames.h5").string());
+    nlohmann::json summary = io::summary_json(result, analysis);
+    summary["pipeline_seconds"] = seconds;
+    io::write_json(summary, (out / "summary.json").string());  // last: its presence marks a finished run
+    std::cout << "vibrissa trial: " << tr.frames() << " frames, " << result.pre.periods.size() << " contact periods, "
+              << contact << " contact frames solved in " << seconds << " s\n";
+    if (analysis.friction)
+      std::cout << "  median mu (contact-point mode, F_N >= 0.1 mN): " << analysis.friction->median << " over "
+                << analysis.friction->frames_used << " frames\n";
+    if (analysis.z_error && analysis.z_error->fit_eq6.all)
+      std::cout << "  eq. (6) fit: slope " << analysis.z_error->fit_eq6.all->slope << ", r2 "
+                << analysis.z_error->fit_eq6.all->r2 << "\n";
+    std::cout << "  results in " << out.string() << "\n";
+    if (!a->no_figures) {
+      fs::create_directories(out / "figures");
+      run_figure_script("trial_figures.py", {(out / "frames.h5").string(), (out / "summary.json").string(),
+                                             (out / "figures").string()});
+    }
+  });
+}
+
+}  // namespace vibrissa::cli

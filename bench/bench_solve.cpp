@@ -1,0 +1,97 @@
+// Speed of the engine at N = 100 (issue 2, item 11): forward evaluation, contact-point and edge solves,
+// cold and warm. Run: build/bench/bench_solve --benchmark_min_time=0.5
+#include <benchmark/benchmark.h>
+
+#include <numbers>
+
+#include "vibrissa/core/chain.hpp"
+#include "vibrissa/solve/solvers.hpp"
+
+namespace {
+using namespace vibrissa;
+
+Whisker bench_whisker() {
+  Pose pose;
+  pose.theta = 10.0 * std::numbers::pi / 180.0;
+  pose.phi = 10.0 * std::numbers::pi / 180.0;
+  pose.zeta = 30.0 * std::numbers::pi / 180.0;
+  return Whisker::from_parabola(0.040, 12.0, WhiskerProperties{}, pose);
+}
+Edge bench_peg() {
+  Edge e;
+  e.point = {0.020, 0.0, 0.0};
+  e.direction = {0.0, 0.0, 1.0};
+  return e;
+}
+SolveOptions fast() {
+  SolveOptions o;
+  o.compute_shape = false;
+  return o;
+}
+
+void BM_Forward(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  double f = 1e-4;
+  for (auto _ : state) {
+    auto c = deflect<double>(w, V3<double>(0.0, f, 0.3 * f), V3<double>(0, 0, 0), 0.025);
+    benchmark::DoNotOptimize(c);
+    f += 1e-12;
+  }
+}
+BENCHMARK(BM_Forward);
+
+void BM_ForwardWithJacobian(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  using D = Dual<3>;
+  for (auto _ : state) {
+    auto c = deflect<D>(w, V3<D>(D(0.0), D::variable(1e-4, 0), D::variable(3e-5, 1)), V3<D>(D(0.0), D(0.0), D(0.0)),
+                        D::variable(0.025, 2));
+    benchmark::DoNotOptimize(c);
+  }
+}
+BENCHMARK(BM_ForwardWithJacobian);
+
+void BM_EdgeCold(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  const Edge peg = bench_peg();
+  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, peg, std::nullopt, fast()));
+}
+BENCHMARK(BM_EdgeCold);
+
+void BM_EdgeWarm(benchmark::State& state) {
+  // Warm start from the previous frame of a 1 kHz whisk (0.05 deg of protraction earlier).
+  const Whisker w = bench_whisker();
+  Pose prev = w.pose();
+  prev.theta -= 0.05 * std::numbers::pi / 180.0;
+  const Solution before = solve_edge(w.placed(prev), bench_peg(), std::nullopt, fast());
+  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, fast(), &before.state));
+}
+BENCHMARK(BM_EdgeWarm);
+
+void BM_PointCold(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point + Eigen::Vector3d(0, 0, 1e-3);
+  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, fast()));
+}
+BENCHMARK(BM_PointCold);
+
+void BM_PointWarm(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point + Eigen::Vector3d(0, 0, 1e-3);
+  const Solution near = solve_point(w, target + Eigen::Vector3d(0, 0, 2e-5), std::nullopt, fast());
+  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, fast(), &near.state));
+}
+BENCHMARK(BM_PointWarm);
+
+void BM_FrictionalEdgeWarm(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  const Solution free = solve_edge(w, bench_peg(), std::nullopt, fast());
+  const Eigen::Vector3d previous = free.contact_point - Eigen::Vector3d(0, 0, 2e-3);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(solve_frictional_edge(w, bench_peg(), 0.48, previous, fast(), &free.state));
+}
+BENCHMARK(BM_FrictionalEdgeWarm);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,108 @@
+#pragma once
+// Full-array edge-mode simulation (spec §3.4, §4.4, Fig. 4a): every whisker of a morphology whisks with the
+// given kinematics, for each of a list of head pitches, against a scene of edges. Per whisker and frame:
+//   free --(rest whisker crosses an edge since the last frame)--> contact
+//   contact: solve edge mode (warm-started from the previous frame)
+//     converged -> contact;  no_contact -> free (the edge would have to pull);
+//     slipped_off, past a finite edge's end, or not_converged (no frictionless equilibrium left: the whisker
+//     slides along the edge and snaps free) -> pushed_past
+//   pushed_past --(rest whisker crosses that edge's line again: retraction)--> free
+// The first frame has no previous frame and is always free.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vibrissa/array/head.hpp"
+#include "vibrissa/array/kinematics.hpp"
+#include "vibrissa/array/morphology.hpp"
+#include "vibrissa/array/objects.hpp"
+
+namespace vibrissa::array {
+
+enum class ContactState : std::int8_t { free = 0, contact = 1, pushed_past = 2 };
+std::string_view to_string(ContactState state);
+
+enum class ContactMode { edge, frictional_edge };
+std::string_view to_string(ContactMode mode);
+ContactMode contact_mode_from_string(std::string_view name, const char* field = "solver.mode");
+
+struct SimulationConfig {
+  Morphology morphology;
+  WhiskingKinematics whisking;
+  HeadMotion head;
+  std::vector<double> pitches{0.0};  ///< extra head pitch of each run [rad] (a sweep when more than one)
+  std::vector<SceneObject> objects;
+  std::vector<double> times;  ///< frame times [s], strictly increasing
+  ContactMode mode = ContactMode::edge;
+  double mu = 0.48;     ///< friction coefficient: eq. (7) bound, and the frictional mode (data sheet §4)
+  int links = 100;      ///< links per whisker (spec §2.1)
+  double tolerance = 1e-10;  ///< solver contact residual [m]
+  int max_iterations = 100;
+  std::vector<int> render_frames;  ///< frames whose rest and deflected shapes are kept (for the animation)
+  int render_pitch = 0;            ///< index into `pitches` of the rendered run
+  int threads = 0;                 ///< OpenMP threads (0: all)
+};
+
+/// Throws std::invalid_argument naming the field for anything unusable.
+void validate(const SimulationConfig& config);
+
+/// Results laid out [pitch][whisker][frame] (vectors: [...][3]). Frames without contact hold zeros.
+struct ArrayResult {
+  std::size_t n_pitches = 0, n_whiskers = 0, n_frames = 0, n_nodes = 0;
+  std::vector<double> times;    ///< [s]
+  std::vector<double> pitches;  ///< [rad]
+  std::vector<std::string> labels;  ///< whisker labels, e.g. "C2R"
+
+  std::vector<std::int8_t> state;          ///< ContactState
+  std::vector<std::int8_t> solver_status;  ///< vibrissa::Status of the frame's solve; -1: no solve
+  std::vector<std::int16_t> edge;          ///< index of the touched edge (edges_in_world order); -1: none
+  std::vector<double> s_applied;           ///< arc length of contact [m]
+  std::vector<double> contact_W;           ///< contact point, world [m] (x3)
+  std::vector<double> force_W, moment_W;   ///< at the base, world [N], [N·m] (x3)
+  std::vector<double> force_B, moment_B;   ///< at the base, whisker frame (Fx, Fy, Fz), (Mx, My, Mz) (x3)
+  std::vector<double> FT, MB, FD, MD;      ///< spec §2.4 [N], [N·m], [rad], [rad]
+  std::vector<double> normal_force;        ///< F_N, force normal to the edge [N]
+  std::vector<double> edge_force;          ///< force along the edge [N] (non-zero only with friction)
+  std::vector<double> z_edge;              ///< contact position along the edge from its p0 [m]
+  std::vector<double> z_error;             ///< eq. (7) bound for `mu` [m]
+
+  /// Source angles of each whisker, [whisker][frame] [rad] (independent of the head).
+  std::vector<double> theta, phi, zeta;
+  /// Base point of each whisker in the world, [pitch][whisker][frame][3] [m].
+  std::vector<double> base_W;
+
+  /// Rendered frames of run `render_pitch`: [render][whisker][node][3] rest and deflected shapes [m].
+  std::vector<int> render_frames;
+  std::vector<float> rest_shapes, deflected_shapes;
+  /// Edges at each rendered frame, [render][edge][2 ends][3] [m] (infinite edges clipped to ±60 mm).
+  std::vector<float> render_edges;
+  std::size_t n_edges = 0;
+
+  std::size_t solves = 0;          ///< edge solves performed
+  std::size_t failed_solves = 0;   ///< solves that ended not_converged (counted as pushed past)
+  double wall_seconds = 0.0;
+
+  [[nodiscard]] std::size_t index(std::size_t pitch, std::size_t whisker, std::size_t frame) const {
+    return (pitch * n_whiskers + whisker) * n_frames + frame;
+  }
+  [[nodiscard]] ContactState state_at(std::size_t p, std::size_t w, std::size_t f) const {
+    return static_cast<ContactState>(state[index(p, w, f)]);
+  }
+  [[nodiscard]] Eigen::Vector3d vec(const std::vector<double>& v, std::size_t p, std::size_t w, std::size_t f) const {
+    const std::size_t i = 3 * index(p, w, f);
+    return {v[i], v[i + 1], v[i + 2]};
+  }
+};
+
+/// Frame times t_k = start + k (end − start) / (frames − 1).
+std::vector<double> uniform_times(double start, double end, int frames);
+
+/// Runs every (pitch, whisker) pair in parallel. `progress(done, total)` is called from one thread.
+ArrayResult simulate_array(const SimulationConfig& config,
+                           const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace vibrissa::array

@@ -1,0 +1,31 @@
+#pragma once
+// Output of `vibrissa trial` (docs/trials.md, "Outputs"): the per-frame table as CSV and HDF5 (same
+// columns), and summary.json with every number of the analyses. All writes are atomic (temp + rename).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "vibrissa/trial/analysis.hpp"
+
+namespace vibrissa::io {
+
+struct ResultTable {
+  std::vector<std::pair<std::string, std::vector<double>>> numeric;  ///< SI units unless the name says so
+  std::vector<std::pair<std::string, std::vector<std::string>>> text;  ///< status columns
+};
+
+/// Columns: time, contact, period, period_edge, theta, phi, zeta (filtered, used), then per mode
+/// (prefix cp_, edge_, fric_): status, contact_x/y/z, height, s_applied, Fx/Fy/Fz_world, Mx/My/Mz_world,
+/// Fx/Fy/Fz_B, Mx/My/Mz_B, FT, MB, FD_deg, MD_deg, normal_force, friction_force, shape_error, iterations;
+/// then mu, mu_outlier, z_error, z_error_eq6, z_error_eq7, kinematic_height, tracked_height.
+ResultTable result_table(const trial::PipelineResult& result, const trial::TrialAnalysis& analysis);
+
+void write_result_table_csv(const ResultTable& table, const std::string& path);
+void write_result_table_h5(const ResultTable& table, const std::string& path);
+
+nlohmann::json summary_json(const trial::PipelineResult& result, const trial::TrialAnalysis& analysis);
+void write_json(const nlohmann::json& json, const std::string& path);
+
+}  // namespace vibrissa::io

@@ -1,0 +1,35 @@
+#pragma once
+// One function per binding file; module.cpp calls them in dependency order.
+#include <string>
+
+#include <pybind11/pybind11.h>
+
+#include "vibrissa/core/whisker.hpp"
+#include "vibrissa/solve/options.hpp"
+#include "vibrissa/solve/solution.hpp"
+
+namespace vibrissa::python {
+
+namespace py = pybind11;
+
+void bind_core(py::module_& m);   // core.cpp: Scheme, BaseJoint, Pose, WhiskerProperties, Whisker
+void bind_solve(py::module_& m);  // solve.cpp: Status, SolveOptions, Edge, LoadState, Solution, solve_*
+void bind_batch(py::module_& m);  // batch.cpp: solve_*_batch (GIL released, OpenMP)
+void bind_case(py::module_& m);   // case.cpp: Case JSON round trip (same code as `vibrissa solve`)
+
+/// Enum arguments accept the enum or its JSON name ("paper", "rigid", ...); ValueError otherwise.
+Scheme scheme_arg(py::handle obj);
+BaseJoint base_joint_arg(py::handle obj);
+/// Pose argument: a Pose, or None for the default pose.
+Pose pose_arg(py::handle obj);
+/// Options argument: a SolveOptions, or None for the defaults.
+SolveOptions options_arg(py::handle obj);
+/// Warm start: a LoadState, a Solution (its .state) or None.
+std::optional<LoadState> warm_arg(py::handle obj);
+
+/// A Solution's fields as the JSON result contract (docs/formats.md) names them; vectors as NumPy arrays.
+py::dict solution_to_dict(const Solution& s);
+/// The result JSON text of `vibrissa solve` (the CLI's writer).
+std::string solution_json_text(const Solution& s, int indent);
+
+}  // namespace vibrissa::python

@@ -1,0 +1,162 @@
+"""Batch solves equal the loop of single solves (to 1e-12), whatever the thread count and layout."""
+
+import numpy as np
+import pytest
+
+import vibrissa
+from vibrissa import Edge, Pose, SolveOptions, Status
+
+FIELDS = ("force_magnitude", "arc_length", "angle", "contact_point", "force", "moment", "residual")
+
+
+def assert_matches(batch, index, sol, tol=1e-12):
+    assert batch.status[index] == int(sol.status)
+    assert batch.iterations[index] == sol.iterations
+    for name in FIELDS:
+        np.testing.assert_allclose(getattr(batch, name)[index], getattr(sol, name), rtol=tol, atol=0.0, err_msg=name)
+    for name in ("FT", "MB", "FD", "MD", "force", "moment"):
+        np.testing.assert_allclose(getattr(batch.whisker_frame, name)[index], getattr(sol.whisker_frame, name),
+                                   rtol=tol, atol=0.0, err_msg=name)
+    for name in ("normal_force", "edge_force"):
+        v = getattr(sol, name)
+        if v is None:
+            assert np.isnan(getattr(batch, name)[index])
+        else:
+            assert getattr(batch, name)[index] == pytest.approx(v, rel=tol, abs=0.0)
+
+
+def loop_point(w, points, warm_start):
+    out, warm = [], None
+    for p in points:
+        s = vibrissa.solve_point(w, p, warm=warm if warm_start else None)
+        warm = s if s.converged else None
+        out.append(s)
+    return out
+
+
+@pytest.mark.parametrize("warm_start", [True, False])
+def test_point_batch_equals_loop(small_whisker, peg_track, warm_start):
+    batch = vibrissa.solve_point_batch(small_whisker, peg_track, warm_start=warm_start, shapes=True)
+    assert batch.frames_shape == (12,) and batch.shape.shape == (12, 41, 3)
+    for i, s in enumerate(loop_point(small_whisker, peg_track, warm_start)):
+        assert_matches(batch, i, s)
+        np.testing.assert_allclose(batch.shape[i], s.shape, rtol=1e-12, atol=1e-300)
+    assert batch.converged.all()
+
+
+def test_warm_start_continues_the_root_and_saves_iterations(small_whisker, peg_track):
+    warm = vibrissa.solve_point_batch(small_whisker, peg_track, warm_start=True)
+    cold = vibrissa.solve_point_batch(small_whisker, peg_track, warm_start=False)
+    assert warm.iterations[1:].sum() < cold.iterations[1:].sum()
+
+
+def test_thread_count_does_not_change_results(small_whisker, peg_track):
+    series = np.stack([peg_track + [0.0, 1e-4 * k, 0.0] for k in range(6)])
+    one = vibrissa.solve_point_batch(small_whisker, series, threads=1)
+    two = vibrissa.solve_point_batch(small_whisker, series, threads=2)
+    for name in ("status", "force_magnitude", "contact_point", "state", "iterations"):
+        np.testing.assert_array_equal(getattr(one, name), getattr(two, name))
+    cold1 = vibrissa.solve_point_batch(small_whisker, series, warm_start=False, threads=1)
+    cold2 = vibrissa.solve_point_batch(small_whisker, series, warm_start=False, threads=3)
+    np.testing.assert_array_equal(cold1.force, cold2.force)
+
+
+def test_many_whiskers_and_series_axis(small_whisker, peg_track):
+    whiskers = [small_whisker.placed(Pose(theta=t)) for t in (0.0, 0.02, -0.02)]
+    batch = vibrissa.solve_point_batch(whiskers, peg_track)  # (F, 3) shared by 3 series
+    assert batch.frames_shape == (3, 12)
+    for k, w in enumerate(whiskers):
+        for i, s in enumerate(loop_point(w, peg_track, True)):
+            assert_matches(batch, (k, i), s)
+
+
+def test_poses_per_frame(small_whisker, peg_track):
+    angles = np.column_stack([np.linspace(0, 0.05, 12), np.zeros(12), np.zeros(12)])
+    base = np.tile([0.0, 0.0, 1e-4], (12, 1))
+    batch = vibrissa.solve_point_batch(small_whisker, peg_track, pose_angles=angles, pose_base=base,
+                                       warm_start=False)
+    for i in range(12):
+        w = small_whisker.placed(Pose(base=base[i], theta=angles[i, 0]))
+        assert_matches(batch, i, vibrissa.solve_point(w, peg_track[i]))
+
+
+def test_edge_batch_equals_loop(small_whisker):
+    F = 10
+    points = np.column_stack([np.full(F, 0.018), np.linspace(0.003, 0.006, F), np.zeros(F)])
+    direction = np.array([0.0, 0.1, 1.0], dtype=np.float32)  # (3,) shared, float32
+    approach = [0.0, 1.0, 0.0]  # F · approach < 0 for these contacts (solve_edge docs)
+    batch = vibrissa.solve_edge_batch(small_whisker, points, direction, approach=approach)
+    warm = None
+    for i in range(F):
+        s = vibrissa.solve_edge(small_whisker, Edge(points[i], direction.astype(np.float64)), warm=warm,
+                                approach_W=approach)
+        warm = s if s.converged else None
+        assert_matches(batch, i, s)
+    assert np.all(batch.converged[1:])
+    assert np.all(np.abs(batch.edge_force[batch.converged]) < 1e-12)
+
+
+def test_frictional_edge_batch_equals_loop(small_whisker):
+    F = 10
+    points = np.column_stack([np.full(F, 0.018), np.linspace(0.003, 0.006, F), np.zeros(F)])
+    direction = np.array([0.0, 0.3, 1.0])
+    mu = 0.3
+    batch = vibrissa.solve_frictional_edge_batch(small_whisker, points, direction, mu)
+    prev, warm = None, None
+    for i in range(F):
+        edge = Edge(points[i], direction)
+        s = None
+        if prev is None:
+            free = vibrissa.solve_edge(small_whisker, edge, warm=warm, options=SolveOptions(compute_shape=False))
+            if free.converged:
+                prev = free.contact_point
+            else:
+                s = free
+        if s is None:
+            s = vibrissa.solve_frictional_edge(small_whisker, edge, mu, prev, warm=warm)
+        prev = s.contact_point if s.converged else None
+        warm = s if s.converged else None
+        assert_matches(batch, i, s)
+    ok = batch.converged
+    assert ok.any()
+    assert np.all(np.abs(batch.edge_force[ok]) <= mu * batch.normal_force[ok] * (1 + 1e-9))
+
+
+def test_force_batch_equals_loop(small_whisker):
+    forces = np.linspace(0.0, 2e-4, 8)
+    angles = np.linspace(-1.0, 1.0, 8)
+    batch = vibrissa.solve_force_batch(small_whisker, forces, 0.015, angles, shapes=True)
+    for i in range(8):
+        s = vibrissa.solve_force(small_whisker, forces[i], 0.015, angles[i])
+        assert_matches(batch, i, s)
+        np.testing.assert_array_equal(batch.shape[i], s.shape)
+
+
+def test_statuses_are_reported_per_frame(small_whisker):
+    points = np.array([[0.02, 0.004, 0.0], [0.5, 0.0, 0.0], [0.02, 0.0045, 0.0]])
+    batch = vibrissa.solve_point_batch(small_whisker, points)
+    assert list(batch.status_names) == ["converged", "no_contact", "converged"]
+    assert batch.status[1] == int(Status.no_contact)
+
+
+def test_batch_layout_errors_name_the_arguments(small_whisker, peg_track):
+    with pytest.raises(ValueError, match=r"arc_length_hint has 5 frames but points has 12"):
+        vibrissa.solve_point_batch(small_whisker, peg_track, arc_length_hint=np.full(5, 0.02))
+    with pytest.raises(ValueError, match=r"points has 2 series but whisker has 3"):
+        vibrissa.solve_point_batch([small_whisker] * 3, np.stack([peg_track, peg_track]))
+    with pytest.raises(ValueError, match=r"whisker\[1\] must be a vibrissa.Whisker"):
+        vibrissa.solve_point_batch([small_whisker, 3], peg_track)
+    with pytest.raises(ValueError, match=r"edge_points must have shape"):
+        vibrissa.solve_edge_batch(small_whisker, np.zeros((2, 2, 2, 3)))
+    with pytest.raises(ValueError, match=r"threads must be >= 1"):
+        vibrissa.solve_point_batch(small_whisker, peg_track, threads=0)
+    with pytest.raises(ValueError, match=r"load.force must be >= 0.*series 0, frame 1"):
+        vibrissa.solve_force_batch(small_whisker, [1e-5, -1.0], 0.01)
+
+
+def test_result_conveniences(small_whisker, peg_track):
+    batch = vibrissa.solve_point_batch(small_whisker, peg_track)
+    d = batch.to_dict()
+    assert set(d["whisker_frame"]) == {"force", "moment", "FT", "MB", "FD", "MD"}
+    assert len(batch) == 12 and "12" in repr(batch)
+    assert batch.state.shape == (12, 4) and batch.status.dtype == np.int32

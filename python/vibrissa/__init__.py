@@ -1,0 +1,63 @@
+"""vibrissa: quasi-static 3D mechanics of rat whiskers (Huet & Hartmann 2016).
+
+The compiled core (``vibrissa._vibrissa``) mirrors the C++ library one to one: :class:`Whisker`,
+:class:`Pose`, :class:`WhiskerProperties`, :class:`Edge`, :class:`SolveOptions`, :class:`Solution`,
+:class:`Status` and the solvers :func:`solve_force`, :func:`solve_dead_load`, :func:`solve_point`,
+:func:`solve_edge`, :func:`solve_frictional_edge`. This package adds
+
+* batch solves over many frames / whiskers that release the GIL and use every core
+  (:func:`solve_point_batch`, :func:`solve_edge_batch`, :func:`solve_frictional_edge_batch`,
+  :func:`solve_force_batch`), returning a :class:`BatchResult` of stacked NumPy arrays;
+* the JSON case round trip of ``vibrissa solve`` (:func:`load_case`, :func:`make_whisker`,
+  :func:`solve_case_file`);
+* plotting helpers (:mod:`vibrissa.plot`, needs matplotlib).
+
+SI units throughout: m, N, N·m, Pa, rad. World-frame quantities unless the name says otherwise
+(``_B``: whisker frame; ``whisker_frame``: the base signals of spec §2.4). See docs/python.md.
+"""
+
+from ._vibrissa import (  # noqa: F401
+    BaseJoint,
+    Case,
+    Edge,
+    LoadState,
+    Pose,
+    Scheme,
+    Solution,
+    SolveOptions,
+    Status,
+    Whisker,
+    WhiskerFrameSignals,
+    WhiskerProperties,
+    __version__,
+    max_threads,
+    pose_from_rotation,
+    rotation_from_angles,
+    solution_to_json,
+    solve_case,
+    solve_dead_load,
+    solve_edge,
+    solve_force,
+    solve_frictional_edge,
+    solve_point,
+    status_from_string,
+    write_result,
+)
+from .batch import (  # noqa: F401
+    STATUS_NAMES,
+    BatchResult,
+    solve_edge_batch,
+    solve_force_batch,
+    solve_frictional_edge_batch,
+    solve_point_batch,
+)
+from .case import case_from_dict, load_case, make_whisker, solve_case_file  # noqa: F401
+
+__all__ = [
+    "BaseJoint", "BatchResult", "Case", "Edge", "LoadState", "Pose", "STATUS_NAMES", "Scheme", "Solution",
+    "SolveOptions", "Status", "Whisker", "WhiskerFrameSignals", "WhiskerProperties", "__version__",
+    "case_from_dict", "load_case", "make_whisker", "max_threads", "pose_from_rotation", "rotation_from_angles",
+    "solution_to_json", "solve_case", "solve_case_file", "solve_dead_load", "solve_edge", "solve_edge_batch",
+    "solve_force", "solve_force_batch", "solve_frictional_edge", "solve_frictional_edge_batch", "solve_point",
+    "solve_point_batch", "status_from_string", "write_result",
+]

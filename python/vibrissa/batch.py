@@ -1,0 +1,151 @@
+"""Batch solves: many frames and/or many whiskers per call, computed in C++ with the GIL released.
+
+Layout of the inputs (every array is converted to float64; lists, float32 and non-contiguous views are fine):
+
+* one series of F frames: per-frame vectors have shape ``(F, 3)``, per-frame scalars ``(F,)``;
+* S independent series: ``(S, F, 3)`` and ``(S, F)``, or pass ``whisker`` as a sequence of S whiskers;
+* an input without a series axis is shared by every series; a ``(3,)`` vector or a plain number is shared by
+  every frame.
+
+Results are stacked arrays of shape ``(F, ...)``, or ``(S, F, ...)`` when any input has a series axis.
+
+With ``warm_start=True`` (the default for the contact modes) frame ``f`` starts from frame ``f-1``'s solution
+when that one converged, so a series runs in order on one core and series run in parallel; with
+``warm_start=False`` every frame is independent and frames run in parallel. The number of threads never
+changes the results. ``threads=None`` uses OpenMP's default (``OMP_NUM_THREADS`` or all cores).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _vibrissa
+from ._vibrissa import Status
+
+#: Status names indexed by the integer codes in :attr:`BatchResult.status`.
+STATUS_NAMES = tuple(s.label for s in sorted(Status.__members__.values(), key=int))
+
+
+class BatchWhiskerFrame:
+    """Stacked base signals in the whisker frame (spec §2.4): ``force`` (..., 3) [N], ``moment`` (..., 3)
+    [N·m], ``FT``, ``MB`` [N, N·m], ``FD``, ``MD`` [rad]."""
+
+    __slots__ = ("force", "moment", "FT", "MB", "FD", "MD")
+
+    def __init__(self, d: dict):
+        for k in self.__slots__:
+            setattr(self, k, d[k])
+
+    def __repr__(self) -> str:
+        return f"BatchWhiskerFrame(frames={self.FT.shape})"
+
+
+class BatchResult:
+    """Stacked results of a batch solve; the fields are named as in :class:`Solution` and the JSON result.
+
+    Per-frame arrays have the batch's leading shape ``L`` = ``(F,)`` or ``(S, F)``:
+
+    * ``status`` (L) int32 codes of :class:`Status` (``STATUS_NAMES[code]`` is the name), ``converged`` (L) bool
+    * ``force_magnitude`` [N], ``arc_length`` [m], ``angle`` [rad], ``residual`` [m], ``iterations`` (L)
+    * ``contact_point`` [m], ``force`` [N], ``moment`` [N·m]: (L, 3), world frame
+    * ``whisker_frame``: ``force``, ``moment`` (L, 3) and ``FT``, ``MB``, ``FD``, ``MD`` (L)
+    * ``normal_force``, ``edge_force`` [N] (L): NaN where the mode does not define them
+    * ``state`` (L, 4): ``(force_x, force_y, force_z, arc_length)``, the warm-start unknowns
+    * ``shape`` (L, N+1, 3) world [m] when the batch was called with ``shapes=True``, else None
+    """
+
+    __slots__ = ("status", "force_magnitude", "arc_length", "angle", "contact_point", "force", "moment",
+                 "whisker_frame", "normal_force", "edge_force", "residual", "iterations", "state", "shape")
+
+    def __init__(self, d: dict):
+        for k in self.__slots__:
+            v = d[k]
+            setattr(self, k, BatchWhiskerFrame(v) if k == "whisker_frame" else v)
+
+    @property
+    def converged(self) -> np.ndarray:
+        """Boolean array: status == Status.converged."""
+        return self.status == int(Status.converged)
+
+    @property
+    def status_names(self) -> np.ndarray:
+        """The status of every frame as its JSON name (array of str)."""
+        return np.asarray(STATUS_NAMES, dtype=object)[self.status]
+
+    @property
+    def frames_shape(self) -> tuple:
+        """The leading shape ``(F,)`` or ``(S, F)``."""
+        return self.status.shape
+
+    def __len__(self) -> int:
+        return len(self.status)
+
+    def to_dict(self) -> dict:
+        """Plain dict of arrays (``whisker_frame`` as a nested dict)."""
+        out = {k: getattr(self, k) for k in self.__slots__}
+        wf = self.whisker_frame
+        out["whisker_frame"] = {k: getattr(wf, k) for k in BatchWhiskerFrame.__slots__}
+        return out
+
+    def __repr__(self) -> str:
+        n = int(self.converged.sum())
+        return f"BatchResult(frames={self.frames_shape}, converged={n}/{self.status.size})"
+
+
+WhiskerArg = Union["_vibrissa.Whisker", Sequence["_vibrissa.Whisker"]]
+
+
+def solve_force_batch(whisker: WhiskerArg, force: Any, arc_length: Any, angle: Any = None, *,
+                      pose_base: Any = None, pose_angles: Any = None,
+                      options: Optional[_vibrissa.SolveOptions] = None, shapes: bool = False,
+                      threads: Optional[int] = None) -> BatchResult:
+    """Force mode for many frames (see :func:`solve_force`): ``force`` [N], ``arc_length`` [m] and ``angle``
+    [rad] are numbers, (F,) or (S, F). Frames are independent and run in parallel.
+
+    ``pose_base`` (..., 3) [m] and ``pose_angles`` (..., 3) = (theta, phi, zeta) [rad] re-place the whisker
+    per frame. ``shapes=True`` also returns the deflected shapes."""
+    return BatchResult(_vibrissa.solve_force_batch(
+        whisker, force, arc_length, angle, pose_base=pose_base, pose_angles=pose_angles, options=options,
+        shapes=shapes, threads=threads))
+
+
+def solve_point_batch(whisker: WhiskerArg, points: Any, *, arc_length_hint: Any = None,
+                      edge_direction: Any = None, pose_base: Any = None, pose_angles: Any = None,
+                      options: Optional[_vibrissa.SolveOptions] = None, warm_start: bool = True,
+                      shapes: bool = False, threads: Optional[int] = None) -> BatchResult:
+    """Contact-point mode for many frames (see :func:`solve_point`): ``points`` (F, 3) or (S, F, 3) world
+    [m]. ``arc_length_hint`` [m] (number, (F,) or (S, F)); ``edge_direction`` ((3,), (F, 3) ...) splits the
+    force into normal_force / edge_force. With ``warm_start`` each frame starts from the previous one."""
+    return BatchResult(_vibrissa.solve_point_batch(
+        whisker, points, arc_length_hint=arc_length_hint, edge_direction=edge_direction, pose_base=pose_base,
+        pose_angles=pose_angles, options=options, warm_start=warm_start, shapes=shapes, threads=threads))
+
+
+def solve_edge_batch(whisker: WhiskerArg, edge_points: Any, edge_directions: Any = None, *,
+                     arc_length_hint: Any = None, approach: Any = None, pose_base: Any = None,
+                     pose_angles: Any = None, options: Optional[_vibrissa.SolveOptions] = None,
+                     warm_start: bool = True, shapes: bool = False, threads: Optional[int] = None) -> BatchResult:
+    """Edge mode (frictionless) for many frames (see :func:`solve_edge`): the edge of frame f passes through
+    ``edge_points[f]`` [m] along ``edge_directions[f]`` (default world +z; (3,) for a fixed direction).
+    ``approach`` gives the direction the whisker moves into the edge (else no_contact)."""
+    return BatchResult(_vibrissa.solve_edge_batch(
+        whisker, edge_points, edge_directions, arc_length_hint=arc_length_hint, approach=approach,
+        pose_base=pose_base, pose_angles=pose_angles, options=options, warm_start=warm_start, shapes=shapes,
+        threads=threads))
+
+
+def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points: Any, edge_directions: Any = None,
+                                mu: float = 0.0, *, initial_contact: Any = None, approach: Any = None,
+                                pose_base: Any = None, pose_angles: Any = None,
+                                options: Optional[_vibrissa.SolveOptions] = None, shapes: bool = False,
+                                threads: Optional[int] = None) -> BatchResult:
+    """Frictional edge mode (Coulomb ``mu``) along time series (see :func:`solve_frictional_edge`).
+
+    The contact history runs through each series in order: frame f starts from frame f-1's contact point and
+    solution. The first touch (and any touch after contact was lost) starts at the frictionless contact,
+    unless ``initial_contact`` ((3,) or (S, 3), world [m]) gives the first frame's previous contact."""
+    return BatchResult(_vibrissa.solve_frictional_edge_batch(
+        whisker, edge_points, edge_directions, mu, initial_contact=initial_contact, approach=approach,
+        pose_base=pose_base, pose_angles=pose_angles, options=options, shapes=shapes, threads=threads))

@@ -1,0 +1,157 @@
+#include "h5_file.hpp"
+
+#include <stdexcept>
+
+namespace vibrissa::io::h5 {
+
+Handle& Handle::operator=(Handle&& o) noexcept {
+  if (this != &o) {
+    reset();
+    id_ = o.id_;
+    close_ = o.close_;
+    o.id_ = H5I_INVALID_HID;
+  }
+  return *this;
+}
+
+void Handle::reset() {
+  if (id_ >= 0 && close_) close_(id_);
+  id_ = H5I_INVALID_HID;
+}
+
+QuietErrors::QuietErrors() {
+  H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+QuietErrors::~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+
+Handle create_file(const std::string& path) {
+  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (!f.valid()) throw std::runtime_error(path + ": cannot create the HDF5 file");
+  return f;
+}
+
+Handle open_file_read(const std::string& path) {
+  if (H5Fis_hdf5(path.c_str()) <= 0) throw std::invalid_argument(path + ": cannot open as an HDF5 file");
+  Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!f.valid()) throw std::invalid_argument(path + ": cannot open as an HDF5 file");
+  return f;
+}
+
+Handle create_group(hid_t parent, const std::string& name) {
+  Handle g(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) throw std::runtime_error("cannot create HDF5 group '" + name + "'");
+  return g;
+}
+
+bool has_dataset(hid_t loc, const std::string& name) {
+  return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector<hsize_t>& dims,
+                                 const std::string& source) {
+  Handle d(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) throw std::invalid_argument(source + ": column '" + name + "': dataset is missing");
+  Handle space(H5Dget_space(d.get()), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) throw std::invalid_argument(source + ": column '" + name + "': unreadable dataspace");
+  dims.assign(static_cast<std::size_t>(rank), 0);
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  std::size_t count = 1;
+  for (hsize_t x : dims) count *= static_cast<std::size_t>(x);
+  Handle type(H5Dget_type(d.get()), H5Tclose);
+  const H5T_class_t cls = H5Tget_class(type.get());
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER)
+    throw std::invalid_argument(source + ": column '" + name + "': dataset is not numeric");
+  std::vector<double> data(count);
+  if (count > 0 && H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
+    throw std::invalid_argument(source + ": column '" + name + "': cannot read the dataset");
+  return data;
+}
+
+void write_doubles(hid_t loc, const std::string& name, const std::vector<double>& data,
+                   const std::vector<hsize_t>& dims) {
+  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
+  Handle d(H5Dcreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+           H5Dclose);
+  if (!d.valid() || H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
+    throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
+}
+
+void write_bytes(hid_t loc, const std::string& name, const std::vector<unsigned char>& data) {
+  const hsize_t n = data.size();
+  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  Handle d(H5Dcreate2(loc, name.c_str(), H5T_STD_U8LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+           H5Dclose);
+  if (!d.valid() || H5Dwrite(d.get(), H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
+    throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
+}
+
+void write_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data) {
+  std::vector<const char*> ptrs;
+  for (const auto& s : data) ptrs.push_back(s.c_str());
+  const hsize_t n = data.size();
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), H5T_VARIABLE);
+  H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  Handle d(H5Dcreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  if (!d.valid() || H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0)
+    throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
+}
+
+std::optional<std::string> read_string_attribute(hid_t loc, const std::string& name, const std::string& source) {
+  if (H5Aexists(loc, name.c_str()) <= 0) return std::nullopt;
+  Handle a(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose);
+  Handle type(H5Aget_type(a.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING)
+    throw std::invalid_argument(source + ": attribute '" + name + "': expected a string");
+  Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (H5Tis_variable_str(type.get()) > 0) {
+    H5Tset_size(mem.get(), H5T_VARIABLE);
+    char* s = nullptr;
+    if (H5Aread(a.get(), mem.get(), &s) < 0)
+      throw std::invalid_argument(source + ": attribute '" + name + "': unreadable");
+    std::string out = s ? s : "";
+    H5free_memory(s);
+    return out;
+  }
+  const std::size_t size = H5Tget_size(type.get());
+  H5Tset_size(mem.get(), size + 1);
+  std::string buf(size + 1, '\0');
+  if (H5Aread(a.get(), mem.get(), buf.data()) < 0)
+    throw std::invalid_argument(source + ": attribute '" + name + "': unreadable");
+  return std::string(buf.c_str());
+}
+
+std::optional<double> read_double_attribute(hid_t loc, const std::string& name, const std::string& source) {
+  if (H5Aexists(loc, name.c_str()) <= 0) return std::nullopt;
+  Handle a(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose);
+  Handle type(H5Aget_type(a.get()), H5Tclose);
+  const H5T_class_t cls = H5Tget_class(type.get());
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER)
+    throw std::invalid_argument(source + ": attribute '" + name + "': expected a number");
+  double v = 0.0;
+  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0)
+    throw std::invalid_argument(source + ": attribute '" + name + "': unreadable");
+  return v;
+}
+
+void write_string_attribute(hid_t loc, const std::string& name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), value.size() + 1);
+  H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle a(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!a.valid() || H5Awrite(a.get(), type.get(), value.c_str()) < 0)
+    throw std::runtime_error("cannot write HDF5 attribute '" + name + "'");
+}
+
+void write_double_attribute(hid_t loc, const std::string& name, double value) {
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle a(H5Acreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!a.valid() || H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &value) < 0)
+    throw std::runtime_error("cannot write HDF5 attribute '" + name + "'");
+}
+
+}  // namespace vibrissa::io::h5

@@ -1,0 +1,267 @@
+// CSV trial files (docs/trials.md): '#'-prefixed "key: value" metadata lines, one header row, one row per
+// frame. Lengths, angles and times in the units declared by "# units:"; empty cells and "nan" are NaN.
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "vibrissa/io/trial_io.hpp"
+
+namespace vibrissa::io {
+
+using trial::located_message;
+
+namespace {
+
+constexpr double nan_v = std::numeric_limits<double>::quiet_NaN();
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out;
+  std::string cell;
+  std::istringstream is(line);
+  while (std::getline(is, cell, sep)) out.push_back(trim(cell));
+  if (!line.empty() && line.back() == sep) out.emplace_back();
+  return out;
+}
+
+double parse_number(const std::string& cell, const std::string& src, std::size_t row, const std::string& col) {
+  if (cell.empty() || cell == "nan" || cell == "NaN" || cell == "NAN") return nan_v;
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(cell, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != cell.size())
+    throw std::invalid_argument(located_message(src, row, col, "cannot parse '" + cell + "' as a number"));
+  return v;
+}
+
+std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& src,
+                                  std::size_t row, const std::string& key) {
+  std::istringstream is(text);
+  std::vector<double> v;
+  std::string tok;
+  while (is >> tok) v.push_back(parse_number(tok, src, row, key));
+  if (v.size() != count)
+    throw std::invalid_argument(located_message(src, row, key, "expected " + std::to_string(count) +
+                                                                   " numbers, got '" + text + "'"));
+  return v;
+}
+
+}  // namespace
+
+trial::Trial read_trial_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot open the trial file");
+  trial::Trial t;
+  t.source = path;
+  std::map<std::string, std::pair<std::string, std::size_t>> meta;  // key -> (value, line)
+  std::vector<std::pair<std::string, std::size_t>> edges, rest_points;
+  std::string line;
+  std::size_t line_no = 0;
+  std::vector<std::string> header;
+  std::size_t header_line = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const std::string s = trim(line);
+    if (s.empty()) continue;
+    if (s[0] == '#') {
+      const std::string body = trim(s.substr(1));
+      const auto colon = body.find(':');
+      if (colon == std::string::npos) continue;  // free comment
+      const std::string key = trim(body.substr(0, colon)), value = trim(body.substr(colon + 1));
+      if (key == "edge")
+        edges.emplace_back(value, line_no);
+      else if (key == "rest_point")
+        rest_points.emplace_back(value, line_no);
+      else
+        meta[key] = {value, line_no};
+      continue;
+    }
+    header = split(s, ',');
+    header_line = line_no;
+    break;
+  }
+  if (header.empty()) throw std::invalid_argument(path + ": no header row found");
+
+  // Units first: everything else depends on them.
+  trial::Units& u = t.meta.declared_units;
+  std::size_t meta_units_line = 0;
+  if (auto it = meta.find("units"); it != meta.end()) {
+    meta_units_line = it->second.second;
+    std::istringstream is(it->second.first);
+    std::string kv;
+    while (is >> kv) {
+      const auto eq = kv.find('=');
+      const std::string k = kv.substr(0, eq), v = eq == std::string::npos ? "" : kv.substr(eq + 1);
+      if (k == "length") u.length = v;
+      else if (k == "angle") u.angle = v;
+      else if (k == "time") u.time = v;
+      else throw std::invalid_argument(located_message(path, it->second.second, "units", "unknown unit kind '" + k + "'"));
+    }
+    meta.erase(it);
+  }
+  const std::size_t uline = meta_units_line;
+  const double Ls = trial::length_scale(u.length, located_message(path, uline, "units", "length"));
+  const double As = trial::angle_scale(u.angle, located_message(path, uline, "units", "angle"));
+  const double Ts = trial::time_scale(u.time, located_message(path, uline, "units", "time"));
+
+  auto& mat = t.meta.material;
+  for (const auto& [key, vl] : meta) {
+    const auto& [value, ln] = vl;
+    auto num = [&] { return parse_numbers(value, 1, path, ln, key)[0]; };
+    if (key == "vibrissa-trial" || key == "format") continue;
+    if (key == "frame_rate_Hz") t.meta.frame_rate = num();
+    else if (key == "youngs_modulus_Pa") mat.youngs_modulus = num();
+    else if (key == "poisson_ratio") mat.poisson_ratio = num();
+    else if (key == "base_radius") mat.base_radius = num() * Ls;
+    else if (key == "taper_ratio") mat.taper_ratio = num();
+    else if (key == "links") mat.links = static_cast<int>(num());
+    else throw std::invalid_argument(located_message(path, ln, key, "unknown metadata key"));
+  }
+  for (const auto& [value, ln] : edges) {
+    const auto v = parse_numbers(value, 6, path, ln, "edge");
+    Edge e;
+    e.point = Eigen::Vector3d(v[0], v[1], v[2]) * Ls;
+    e.direction = Eigen::Vector3d(v[3], v[4], v[5]);
+    t.meta.edges.push_back(e);
+  }
+  for (const auto& [value, ln] : rest_points) {
+    const auto v = parse_numbers(value, 3, path, ln, "rest_point");
+    t.meta.rest_shape.emplace_back(Eigen::Vector3d(v[0], v[1], v[2]) * Ls);
+  }
+
+  // Columns.
+  std::map<std::string, std::size_t> col;
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    if (col.count(header[c]))
+      throw std::invalid_argument(located_message(path, header_line, header[c], "column appears twice"));
+    col[header[c]] = c;
+  }
+  auto require = [&](const char* name) {
+    if (!col.count(name))
+      throw std::invalid_argument(located_message(path, header_line, name, "required column is missing"));
+    return col[name];
+  };
+  const std::size_t c_time = require("time"), c_theta = require("theta"), c_phi = require("phi"),
+                    c_contact = require("contact");
+  const std::size_t c_base[3] = {require("base_x"), require("base_y"), require("base_z")};
+  const bool has_zeta = col.count("zeta") > 0;
+  const int n_contact_cols = int(col.count("contact_x") + col.count("contact_y") + col.count("contact_z"));
+  if (n_contact_cols != 0 && n_contact_cols != 3)
+    throw std::invalid_argument(located_message(path, header_line, "contact_x",
+                                                "contact_x, contact_y and contact_z must appear together"));
+  std::size_t shape_nodes = 0;
+  while (col.count("shape_x_" + std::to_string(shape_nodes))) ++shape_nodes;
+  for (std::size_t k = 0; k < shape_nodes; ++k)
+    for (const char* a : {"shape_y_", "shape_z_"})
+      if (!col.count(a + std::to_string(k)))
+        throw std::invalid_argument(located_message(path, header_line, a + std::to_string(k),
+                                                    "shape columns must come in x, y, z triples"));
+  for (const auto& [name, c] : col) {
+    (void)c;
+    const bool known = name == "time" || name == "theta" || name == "phi" || name == "zeta" ||
+                       name == "contact" || name.rfind("base_", 0) == 0 || name.rfind("contact_", 0) == 0 ||
+                       name.rfind("shape_", 0) == 0;
+    if (!known) throw std::invalid_argument(located_message(path, header_line, name, "unknown column"));
+  }
+
+  std::vector<std::size_t> rows;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const std::string s = trim(line);
+    if (s.empty() || s[0] == '#') continue;
+    const auto cells = split(s, ',');
+    if (cells.size() != header.size())
+      throw std::invalid_argument(located_message(path, line_no, "",
+                                                  "has " + std::to_string(cells.size()) + " cells, the header has " +
+                                                      std::to_string(header.size())));
+    auto get = [&](std::size_t c) { return parse_number(cells[c], path, line_no, header[c]); };
+    rows.push_back(line_no);
+    t.time.push_back(get(c_time) * Ts);
+    t.base_W.emplace_back(Eigen::Vector3d(get(c_base[0]), get(c_base[1]), get(c_base[2])) * Ls);
+    t.theta.push_back(get(c_theta) * As);
+    t.phi.push_back(get(c_phi) * As);
+    if (has_zeta) t.zeta.push_back(get(col["zeta"]) * As);
+    const double flag = get(c_contact);
+    if (!(flag == 0.0 || flag == 1.0))
+      throw std::invalid_argument(located_message(path, line_no, "contact",
+                                                  "contact flag must be 0 or 1, got '" + cells[c_contact] + "'"));
+    t.contact.push_back(static_cast<std::uint8_t>(flag));
+    if (n_contact_cols == 3)
+      t.contact_W.emplace_back(Eigen::Vector3d(get(col["contact_x"]), get(col["contact_y"]), get(col["contact_z"])) * Ls);
+    if (shape_nodes > 0) {
+      std::vector<Eigen::Vector3d> shape;
+      for (std::size_t k = 0; k < shape_nodes; ++k) {
+        const std::string ks = std::to_string(k);
+        const Eigen::Vector3d p(get(col["shape_x_" + ks]), get(col["shape_y_" + ks]), get(col["shape_z_" + ks]));
+        if (!p.allFinite()) break;  // NaN-padded: shorter shapes end at the first NaN node
+        shape.emplace_back(p * Ls);
+      }
+      t.shape_W.push_back(std::move(shape));
+    }
+  }
+  if (t.time.empty()) throw std::invalid_argument(located_message(path, header_line + 1, "", "no data rows"));
+  trial::validate(t, &rows);
+  return t;
+}
+
+void write_trial_csv(const trial::Trial& t, const std::string& path) {
+  write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error(path + ": cannot open for writing");
+    out << std::setprecision(17);
+    out << "# vibrissa-trial: 1\n# units: length=m angle=rad time=s\n";
+    out << "# frame_rate_Hz: " << t.meta.frame_rate << "\n";
+    const auto& m = t.meta.material;
+    out << "# youngs_modulus_Pa: " << m.youngs_modulus << "\n# poisson_ratio: " << m.poisson_ratio
+        << "\n# base_radius: " << m.base_radius << "\n# taper_ratio: " << m.taper_ratio << "\n# links: " << m.links
+        << "\n";
+    for (const auto& e : t.meta.edges)
+      out << "# edge: " << e.point.x() << " " << e.point.y() << " " << e.point.z() << " " << e.direction.x() << " "
+          << e.direction.y() << " " << e.direction.z() << "\n";
+    for (const auto& p : t.meta.rest_shape) out << "# rest_point: " << p.x() << " " << p.y() << " " << p.z() << "\n";
+    std::size_t K = 0;
+    for (const auto& s : t.shape_W) K = std::max(K, s.size());
+    out << "time,base_x,base_y,base_z,theta,phi";
+    if (t.has_zeta()) out << ",zeta";
+    out << ",contact";
+    if (t.has_contact_point()) out << ",contact_x,contact_y,contact_z";
+    for (std::size_t k = 0; k < K; ++k) out << ",shape_x_" << k << ",shape_y_" << k << ",shape_z_" << k;
+    out << "\n";
+    auto cell = [&](double v) {
+      out << ',';
+      if (std::isfinite(v)) out << v;
+      else out << "nan";
+    };
+    for (std::size_t i = 0; i < t.frames(); ++i) {
+      out << t.time[i];
+      for (int a = 0; a < 3; ++a) cell(t.base_W[i][a]);
+      cell(t.theta[i]);
+      cell(t.phi[i]);
+      if (t.has_zeta()) cell(t.zeta[i]);
+      out << ',' << int(t.contact[i]);
+      if (t.has_contact_point())
+        for (int a = 0; a < 3; ++a) cell(t.contact_W[i][a]);
+      for (std::size_t k = 0; k < K; ++k)
+        for (int a = 0; a < 3; ++a) cell(t.has_shapes() && k < t.shape_W[i].size() ? t.shape_W[i][k][a] : nan_v);
+      out << "\n";
+    }
+    out.flush();
+    if (!out) throw std::runtime_error(path + ": write failed");
+  });
+}
+
+}  // namespace vibrissa::io

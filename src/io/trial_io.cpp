@@ -1,0 +1,54 @@
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+#include <unistd.h>
+
+#include "vibrissa/io/trial_io.hpp"
+
+namespace vibrissa::io {
+
+namespace {
+std::string extension_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+}  // namespace
+
+trial::Trial read_trial(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext == ".csv") return read_trial_csv(path);
+  if (ext == ".h5" || ext == ".hdf5") return read_trial_h5(path);
+  if (ext == ".mat") return read_trial_mat(path);
+  throw std::invalid_argument(path + ": unknown trial format '" + ext + "' (expected .csv, .h5, .hdf5 or .mat)");
+}
+
+void write_trial(const trial::Trial& trial, const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext == ".csv") return write_trial_csv(trial, path);
+  if (ext == ".h5" || ext == ".hdf5") return write_trial_h5(trial, path);
+  if (ext == ".mat") return write_trial_mat(trial, path);
+  throw std::invalid_argument(path + ": unknown trial format '" + ext + "' (expected .csv, .h5, .hdf5 or .mat)");
+}
+
+std::string temporary_sibling(const std::string& path) {
+  const std::filesystem::path p(path);
+  // Keep the extension last: some libraries (matio) dispatch on it.
+  return (p.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + p.filename().string())).string();
+}
+
+void commit_temporary(const std::string& tmp_path, const std::string& path) {
+  std::error_code ec;
+  std::filesystem::rename(tmp_path, path, ec);
+  if (ec) {
+    discard_temporary(tmp_path);
+    throw std::runtime_error(path + ": cannot move the finished file into place: " + ec.message());
+  }
+}
+
+void discard_temporary(const std::string& tmp_path) noexcept {
+  std::error_code ec;
+  std::filesystem::remove(tmp_path, ec);
+}
+
+}  // namespace vibrissa::io

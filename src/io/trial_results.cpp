@@ -1,0 +1,228 @@
+#include "vibrissa/io/trial_results.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+#include "h5_file.hpp"
+#include "vibrissa/io/trial_io.hpp"
+
+namespace vibrissa::io {
+
+using namespace vibrissa::trial;
+
+namespace {
+
+constexpr double deg = 180.0 / std::numbers::pi;
+
+void add_mode(ResultTable& t, const PipelineResult& r, Mode mode, const std::string& prefix) {
+  const std::size_t n = r.frames.size();
+  auto col = [&](const std::string& name, auto&& get) {
+    std::vector<double> v(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const ModeFrame& m = r.frames[i].mode(mode);
+      v[i] = m.ok() ? static_cast<double>(get(m)) : std::nan("");
+    }
+    t.numeric.emplace_back(prefix + name, std::move(v));
+  };
+  std::vector<std::string> status(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ModeFrame& m = r.frames[i].mode(mode);
+    status[i] = m.solved ? std::string(to_string(m.status)) : std::string("not_in_contact");
+  }
+  t.text.emplace_back(prefix + "status", std::move(status));
+  const char* xyz[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) col(std::string("contact_") + xyz[a], [a](const ModeFrame& m) { return m.contact_W[a]; });
+  col("height", [](const ModeFrame& m) { return m.height; });
+  col("s_applied", [](const ModeFrame& m) { return m.s_applied; });
+  for (int a = 0; a < 3; ++a) col(std::string("F") + xyz[a] + "_world", [a](const ModeFrame& m) { return m.force_W[a]; });
+  for (int a = 0; a < 3; ++a) col(std::string("M") + xyz[a] + "_world", [a](const ModeFrame& m) { return m.moment_W[a]; });
+  for (int a = 0; a < 3; ++a) col(std::string("F") + xyz[a] + "_B", [a](const ModeFrame& m) { return m.signals_B.force[a]; });
+  for (int a = 0; a < 3; ++a) col(std::string("M") + xyz[a] + "_B", [a](const ModeFrame& m) { return m.signals_B.moment[a]; });
+  col("FT", [](const ModeFrame& m) { return m.signals_B.FT; });
+  col("MB", [](const ModeFrame& m) { return m.signals_B.MB; });
+  col("FD_deg", [](const ModeFrame& m) { return m.signals_B.FD * deg; });
+  col("MD_deg", [](const ModeFrame& m) { return m.signals_B.MD * deg; });
+  col("normal_force", [](const ModeFrame& m) { return m.normal_force; });
+  col("friction_force", [](const ModeFrame& m) { return m.friction_force; });
+  col("shape_error", [](const ModeFrame& m) { return m.shape_error; });
+  col("iterations", [](const ModeFrame& m) { return m.iterations; });
+}
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json fit_json(const std::optional<LineFit>& f) {
+  if (!f) return nullptr;
+  return {{"slope", f->slope}, {"intercept", f->intercept}, {"r2", f->r2}, {"r2_identity", f->r2_identity},
+          {"points", f->count}};
+}
+
+nlohmann::json friction_json(const FrictionAnalysis& a) {
+  return {{"median", num(a.median)}, {"mean", num(a.mean)}, {"sd", num(a.sd)}, {"min", num(a.min)},
+          {"max", num(a.max)}, {"frames_used", a.frames_used}, {"outliers_low_normal_force", a.outliers},
+          {"histogram_edges", a.histogram_edges}, {"histogram_counts", a.histogram_counts},
+          {"normal_force_bins_N", a.fn_bin_center}, {"mu_mean_per_bin", [&] {
+             nlohmann::json j = nlohmann::json::array();
+             for (double v : a.fn_bin_mean) j.push_back(num(v));
+             return j;
+           }()},
+          {"mu_sd_per_bin", [&] {
+             nlohmann::json j = nlohmann::json::array();
+             for (double v : a.fn_bin_sd) j.push_back(num(v));
+             return j;
+           }()},
+          {"count_per_bin", a.fn_bin_count}};
+}
+
+nlohmann::json ranges_json(const DirectionRanges& d) {
+  return {{"mean_FD_range_deg", num(d.mean_fd_range_deg)}, {"mean_MD_range_deg", num(d.mean_md_range_deg)},
+          {"FD_range_per_whisk_deg", d.fd_range_deg}, {"MD_range_per_whisk_deg", d.md_range_deg}};
+}
+
+}  // namespace
+
+ResultTable result_table(const PipelineResult& r, const TrialAnalysis& a) {
+  ResultTable t;
+  const std::size_t n = r.frames.size();
+  const Trial& tr = r.pre.trial;
+  std::vector<double> time(n), contact(n), period(n), edge(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    time[i] = r.frames[i].time;
+    contact[i] = r.frames[i].contact;
+    period[i] = r.frames[i].period;
+    edge[i] = r.frames[i].period_edge;
+  }
+  t.numeric = {{"time", time}, {"contact", contact}, {"period", period}, {"period_edge", edge},
+               {"theta", tr.theta}, {"phi", tr.phi}, {"zeta", tr.zeta}};
+  if (r.has_contact_point_mode) add_mode(t, r, Mode::contact_point, "cp_");
+  if (r.has_edge_mode) add_mode(t, r, Mode::edge, "edge_");
+  if (r.has_frictional_mode) add_mode(t, r, Mode::frictional_edge, "fric_");
+  if (a.friction) {
+    t.numeric.emplace_back("mu", a.friction->mu);
+    std::vector<double> o(n), used(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      o[i] = a.friction->outlier[i];
+      used[i] = a.friction->used[i];
+    }
+    t.numeric.emplace_back("mu_outlier", o);
+    t.numeric.emplace_back("mu_used", used);
+  }
+  if (a.friction_frictional) t.numeric.emplace_back("fric_mu", a.friction_frictional->mu);
+  if (a.z_error) {
+    t.numeric.emplace_back("z_error", a.z_error->measured);
+    t.numeric.emplace_back("z_error_eq6", a.z_error->eq6);
+    t.numeric.emplace_back("z_error_eq7", a.z_error->eq7);
+  }
+  t.numeric.emplace_back("kinematic_height", a.kinematic.predicted);
+  t.numeric.emplace_back("tracked_height", a.kinematic.measured);
+  return t;
+}
+
+void write_result_table_csv(const ResultTable& t, const std::string& path) {
+  write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error(path + ": cannot open for writing");
+    out << std::setprecision(12);
+    bool first = true;
+    for (const auto& c : t.numeric) out << (first ? "" : ",") << c.first, first = false;
+    for (const auto& c : t.text) out << "," << c.first;
+    out << "\n";
+    const std::size_t n = t.numeric.empty() ? 0 : t.numeric.front().second.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < t.numeric.size(); ++k) {
+        if (k) out << ',';
+        const double v = t.numeric[k].second[i];
+        if (std::isfinite(v)) out << v;
+        else out << "nan";
+      }
+      for (const auto& c : t.text) out << ',' << c.second[i];
+      out << '\n';
+    }
+    out.flush();
+    if (!out) throw std::runtime_error(path + ": write failed");
+  });
+}
+
+void write_result_table_h5(const ResultTable& t, const std::string& path) {
+  write_atomically(path, [&](const std::string& tmp) {
+    h5::QuietErrors quiet;
+    h5::Handle file = h5::create_file(tmp);
+    h5::Handle g = h5::create_group(file.get(), "frames");
+    for (const auto& [name, v] : t.numeric) h5::write_doubles(g.get(), name, v, {static_cast<hsize_t>(v.size())});
+    for (const auto& [name, v] : t.text) h5::write_strings(g.get(), name, v);
+    h5::write_string_attribute(file.get(), "format", "vibrissa-trial-results");
+    if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error(path + ": HDF5 flush failed");
+  });
+}
+
+nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
+  using nlohmann::json;
+  const Trial& t = r.pre.trial;
+  json j;
+  j["source"] = t.source;
+  j["frames"] = t.frames();
+  j["sample_rate_Hz"] = r.pre.sample_rate_hz;
+  j["contact_periods"] = r.pre.periods.size();
+  std::size_t contact = 0;
+  for (auto c : t.contact) contact += c;
+  j["contact_frames"] = contact;
+  j["zeta_source"] = r.pre.zeta_source;
+  if (r.pre.roll)
+    j["roll_fit"] = {{"slope", r.pre.roll->slope}, {"intercept_rad", r.pre.roll->intercept}, {"r2", r.pre.roll->r2},
+                     {"frames", r.pre.roll->frames}};
+  j["modes"] = {{"contact_point", r.has_contact_point_mode}, {"edge", r.has_edge_mode},
+                {"frictional_edge", r.has_frictional_mode}};
+  if (r.mu) j["frictional_mu"] = *r.mu;
+  json status = json::object();
+  for (Mode m : {Mode::contact_point, Mode::edge, Mode::frictional_edge}) {
+    std::map<std::string, std::size_t> counts;
+    for (const auto& f : r.frames)
+      if (f.mode(m).solved) ++counts[std::string(to_string(f.mode(m).status))];
+    if (!counts.empty()) status[to_string(m)] = counts;
+  }
+  j["status_counts"] = status;
+  j["whisker_length_m"] = a.whisker_length;
+  if (a.friction) j["friction"] = friction_json(*a.friction);
+  if (a.friction_frictional) j["friction_frictional_mode"] = friction_json(*a.friction_frictional);
+  j["force_directions"] = {{"contact_point", ranges_json(a.directions.contact_point)},
+                           {"edge", ranges_json(a.directions.edge)},
+                           {"frictional_edge", ranges_json(a.directions.frictional)},
+                           {"mean_FD_offset_cp_minus_edge_deg", num(a.directions.mean_fd_offset_deg)},
+                           {"mean_MD_offset_cp_minus_edge_deg", num(a.directions.mean_md_offset_deg)}};
+  if (a.z_error) {
+    const auto& z = *a.z_error;
+    auto fits = [](const ZErrorFit& f) {
+      return json{{"all", fit_json(f.all)}, {"without_iqr_outliers", fit_json(f.without_outliers)}, {"outliers", f.outliers}};
+    };
+    j["z_error"] = {{"definition", "z_edge - z_contact_point (height along the edge) [m]; fits: x = measured, y = predicted"},
+                    {"cone_length_m", z.cone_length},
+                    {"mu_eq7", z.mu_eq7},
+                    {"eq6", fits(z.fit_eq6)},
+                    {"eq7", fits(z.fit_eq7)},
+                    {"measured_range_m", {num(z.measured_min), num(z.measured_max)}},
+                    {"eq7_range_m", {num(z.eq7_min), num(z.eq7_max)}},
+                    {"mean_abs_height_difference_m", num(z.mean_abs_height_difference)},
+                    {"max_abs_height_difference_m", num(z.max_abs_height_difference)}};
+  }
+  j["kinematic_prediction"] = {{"fit", fit_json(a.kinematic.fit)},
+                               {"view_direction_W", {r.view_direction_W.x(), r.view_direction_W.y(), r.view_direction_W.z()}}};
+  j["shape_error_mean_m"] = {{"contact_point", num(a.shape_error.contact_point_mean)},
+                             {"edge", num(a.shape_error.edge_mean)},
+                             {"frictional_edge", num(a.shape_error.frictional_mean)}};
+  return j;
+}
+
+void write_json(const nlohmann::json& j, const std::string& path) {
+  write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error(path + ": cannot open for writing");
+    out << j.dump(2) << "\n";
+    out.flush();
+    if (!out) throw std::runtime_error(path + ": write failed");
+  });
+}
+
+}  // namespace vibrissa::io

@@ -1,0 +1,130 @@
+#include "vibrissa/trial/format.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace vibrissa::trial {
+
+namespace {
+[[noreturn]] void fail(const std::string& source, std::size_t row, const std::string& column,
+                       const std::string& message) {
+  throw std::invalid_argument(located_message(source, row, column, message));
+}
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+std::string located_message(const std::string& source, std::size_t row, const std::string& column,
+                            const std::string& message) {
+  std::ostringstream os;
+  os << (source.empty() ? std::string("<trial>") : source) << ": ";
+  if (row > 0) os << "row " << row << ", ";
+  if (!column.empty()) os << "column '" << column << "': ";
+  os << message;
+  return os.str();
+}
+
+double length_scale(const std::string& unit, const std::string& where) {
+  if (unit == "m") return 1.0;
+  if (unit == "mm") return 1e-3;
+  if (unit == "um" || unit == "µm") return 1e-6;
+  throw std::invalid_argument(where + ": unknown length unit '" + unit + "' (expected m, mm or um)");
+}
+double angle_scale(const std::string& unit, const std::string& where) {
+  if (unit == "rad") return 1.0;
+  if (unit == "deg") return std::numbers::pi / 180.0;
+  throw std::invalid_argument(where + ": unknown angle unit '" + unit + "' (expected rad or deg)");
+}
+double time_scale(const std::string& unit, const std::string& where) {
+  if (unit == "s") return 1.0;
+  if (unit == "ms") return 1e-3;
+  throw std::invalid_argument(where + ": unknown time unit '" + unit + "' (expected s or ms)");
+}
+
+std::vector<ContactPeriod> contact_periods(const std::vector<std::uint8_t>& contact) {
+  std::vector<ContactPeriod> periods;
+  for (std::size_t i = 0; i < contact.size(); ++i) {
+    if (!contact[i]) continue;
+    if (i == 0 || !contact[i - 1]) periods.push_back({i, i});
+    periods.back().last = i;
+  }
+  return periods;
+}
+
+WhiskerProperties whisker_properties(const TrialMaterial& m) {
+  WhiskerProperties p;
+  p.links = m.links;
+  p.base_radius = m.base_radius;
+  p.taper_ratio = m.taper_ratio;
+  p.youngs_modulus = m.youngs_modulus;
+  p.poisson_ratio = m.poisson_ratio;
+  return p;
+}
+
+void validate(const Trial& t, const std::vector<std::size_t>* file_rows) {
+  const std::string& src = t.source;
+  const std::size_t n = t.time.size();
+  auto row = [&](std::size_t i) { return file_rows && i < file_rows->size() ? (*file_rows)[i] : i + 1; };
+  if (n == 0) fail(src, 0, "time", "the trial has no frames");
+  auto same_size = [&](std::size_t size, const char* column, bool optional) {
+    if (optional && size == 0) return;
+    if (size != n)
+      fail(src, 0, column, "has " + std::to_string(size) + " rows but 'time' has " + std::to_string(n));
+  };
+  same_size(t.base_W.size(), "base", false);
+  same_size(t.theta.size(), "theta", false);
+  same_size(t.phi.size(), "phi", false);
+  same_size(t.zeta.size(), "zeta", true);
+  same_size(t.contact.size(), "contact", false);
+  same_size(t.contact_W.size(), "contact_point", true);
+  same_size(t.shape_W.size(), "shape", true);
+  auto finite = [&](double v, std::size_t i, const char* column) {
+    if (!std::isfinite(v)) fail(src, row(i), column, "value " + fmt(v) + " is not finite");
+  };
+  static const char* axes[3] = {"base_x", "base_y", "base_z"};
+  static const char* caxes[3] = {"contact_x", "contact_y", "contact_z"};
+  for (std::size_t i = 0; i < n; ++i) {
+    finite(t.time[i], i, "time");
+    if (i > 0 && !(t.time[i] > t.time[i - 1]))
+      fail(src, row(i), "time",
+           "time must increase strictly, got " + fmt(t.time[i]) + " s after " + fmt(t.time[i - 1]) + " s");
+    for (int a = 0; a < 3; ++a) finite(t.base_W[i][a], i, axes[a]);
+    finite(t.theta[i], i, "theta");
+    finite(t.phi[i], i, "phi");
+    if (t.has_zeta()) finite(t.zeta[i], i, "zeta");
+    if (t.contact[i] > 1)
+      fail(src, row(i), "contact", "contact flag must be 0 or 1, got " + std::to_string(t.contact[i]));
+    if (t.has_contact_point() && t.contact[i])
+      for (int a = 0; a < 3; ++a) finite(t.contact_W[i][a], i, caxes[a]);
+  }
+  if (contact_periods(t.contact).empty())
+    fail(src, 0, "contact", "no frame is flagged as contact: the trial has no contact period to analyse");
+  const auto& m = t.meta;
+  if (m.rest_shape.size() < 3)
+    fail(src, 0, "rest_shape", "needs at least 3 points, got " + std::to_string(m.rest_shape.size()));
+  for (std::size_t k = 0; k < m.rest_shape.size(); ++k)
+    if (!m.rest_shape[k].allFinite()) fail(src, k + 1, "rest_shape", "point is not finite");
+  if (m.edges.empty()) fail(src, 0, "edges", "the trial names no object edge");
+  for (std::size_t k = 0; k < m.edges.size(); ++k) {
+    const auto& e = m.edges[k];
+    if (!e.point.allFinite() || !e.direction.allFinite() || e.direction.norm() == 0.0)
+      fail(src, k + 1, "edges", "edge needs a finite point and a non-zero finite direction");
+  }
+  auto positive = [&](double v, const char* field) {
+    if (!(std::isfinite(v) && v > 0.0)) fail(src, 0, field, "must be positive, got " + fmt(v));
+  };
+  positive(m.material.youngs_modulus, "youngs_modulus_Pa");
+  positive(m.material.base_radius, "base_radius");
+  positive(m.material.taper_ratio, "taper_ratio");
+  positive(m.frame_rate, "frame_rate_Hz");
+  if (!(m.material.poisson_ratio > -1.0 && m.material.poisson_ratio < 0.5))
+    fail(src, 0, "poisson_ratio", "must lie in (-1, 0.5), got " + fmt(m.material.poisson_ratio));
+  if (m.material.links < 2) fail(src, 0, "links", "must be >= 2, got " + std::to_string(m.material.links));
+}
+
+}  // namespace vibrissa::trial

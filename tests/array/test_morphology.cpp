@@ -1,0 +1,216 @@
+// Array morphology: the data sheet's check values (rat-array-data.md §1, §2), mirror symmetry, the mapping of
+// the sources' angle convention onto vibrissa's whisker frame, and user tables.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "vibrissa/array/morphology.hpp"
+
+using namespace vibrissa;
+using namespace vibrissa::array;
+
+namespace {
+constexpr double mm = 1e-3;
+double rad(double d) { return d * std::numbers::pi / 180.0; }
+
+const WhiskerSpec& find(const Morphology& m, const std::string& label) {
+  for (const auto& s : m.whiskers)
+    if (s.label() == label) return s;
+  throw std::runtime_error("no whisker " + label);
+}
+}  // namespace
+
+TEST(Morphology, TowalHas31WhiskersPerSideAnd62InAll) {
+  EXPECT_EQ(towal2011(Sides::right).whiskers.size(), 31u);
+  EXPECT_EQ(towal2011(Sides::left).whiskers.size(), 31u);
+  const Morphology both = towal2011(Sides::both);
+  ASSERT_EQ(both.whiskers.size(), 62u);
+  EXPECT_NO_THROW(find(both, "A0R"));
+  EXPECT_NO_THROW(find(both, "E6L"));
+  EXPECT_NO_THROW(find(both, "D6R"));
+  EXPECT_THROW(find(both, "E0R"), std::runtime_error);  // the E row starts at column 1
+  EXPECT_THROW(find(both, "A5R"), std::runtime_error);
+}
+
+TEST(Morphology, TowalCheckValuesOfTheDataSheet) {
+  const Morphology m = towal2011(Sides::right);
+  const WhiskerSpec& a0 = find(m, "A0R");
+  const WhiskerSpec& e6 = find(m, "E6R");
+  // Data sheet §1: A0 (5.359, -10.331, -0.461) mm, S 46.402 mm; E6 (5.081, -1.764, -8.023) mm, S 7.705 mm.
+  EXPECT_NEAR(a0.p_H_base.x() / mm, 5.359, 1e-3);
+  EXPECT_NEAR(a0.p_H_base.y() / mm, -10.331, 1e-3);
+  EXPECT_NEAR(a0.p_H_base.z() / mm, -0.461, 1e-3);
+  EXPECT_NEAR(e6.p_H_base.x() / mm, 5.081, 1e-3);
+  EXPECT_NEAR(e6.p_H_base.y() / mm, -1.764, 1e-3);
+  EXPECT_NEAR(e6.p_H_base.z() / mm, -8.023, 1e-3);
+  EXPECT_NEAR(a0.arc_length / mm, 46.402, 1e-3);
+  EXPECT_NEAR(e6.arc_length / mm, 7.705, 1e-3);
+  EXPECT_NEAR(a0.curvature * mm, 0.01175, 5e-6);
+  // Euler angles of A0 (COL 1, ROW 1): theta = 10.6475 + 37.3178, phi = -15.8761 + 47.3263,
+  // zeta = 18.77 - 11.3485 - 4.9844 (deg).
+  EXPECT_NEAR(a0.theta_rest, rad(47.9653), 1e-9);
+  EXPECT_NEAR(a0.phi_rest, rad(31.4502), 1e-9);
+  EXPECT_NEAR(a0.zeta_rest, rad(2.4371), 1e-9);
+}
+
+TEST(Morphology, TowalBasePointsLieOnThePadEllipsoid) {
+  const Eigen::Vector3d centre(1.9128, -7.6549, -5.4439), radii(9.5304, 5.5393, 6.9745);
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(rad(106.51), Eigen::Vector3d::UnitZ()) *
+                             Eigen::AngleAxisd(rad(-2.5211), Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(rad(-19.5401), Eigen::Vector3d::UnitX()))
+                                .toRotationMatrix();
+  for (const WhiskerSpec& s : towal2011(Sides::right).whiskers) {
+    const Eigen::Vector3d local = R.transpose() * (s.p_H_base / mm - centre);
+    EXPECT_NEAR(local.cwiseQuotient(radii).norm(), 1.0, 1e-12) << s.name;
+  }
+}
+
+TEST(Morphology, LeftSideIsTheMirrorImageOfTheRight) {
+  const Morphology both = towal2011(Sides::both);
+  for (const std::string name : {"A0", "C2", "E6"}) {
+    const WhiskerSpec& r = find(both, name + "R");
+    const WhiskerSpec& l = find(both, name + "L");
+    EXPECT_DOUBLE_EQ(l.p_H_base.x(), -r.p_H_base.x());
+    EXPECT_DOUBLE_EQ(l.p_H_base.y(), r.p_H_base.y());
+    EXPECT_DOUBLE_EQ(l.p_H_base.z(), r.p_H_base.z());
+    const Whisker rest = make_rest_whisker(r, 20);
+    const Eigen::Matrix3d Rr = R_HB(Side::right, r.theta_rest, r.phi_rest, r.zeta_rest);
+    const Eigen::Matrix3d Rl = R_HB(Side::left, l.theta_rest, l.phi_rest, l.zeta_rest);
+    EXPECT_NEAR(Rl.determinant(), 1.0, 1e-12);
+    for (const Eigen::Vector3d& n : rest.rest_nodes_B()) {
+      const Eigen::Vector3d pr = r.p_H_base + Rr * n, pl = l.p_H_base + Rl * n;
+      EXPECT_NEAR(pl.x(), -pr.x(), 1e-15);
+      EXPECT_NEAR(pl.y(), pr.y(), 1e-15);
+      EXPECT_NEAR(pl.z(), pr.z(), 1e-15);
+    }
+  }
+}
+
+TEST(Morphology, SourceConventionMapsOntoTheWhiskerFrame) {
+  // Data sheet §2: the source draws the whisker as (x, 0, -A x^2) and places it by Rz(theta - 90°)·Ry(-phi)·Rx(zeta).
+  // vibrissa draws (x, A x^2, 0) in B; every node must land on the same point. Built here independently with
+  // Eigen's AngleAxis.
+  for (const WhiskerSpec& s : belli2018(Sides::right).whiskers) {
+    const Eigen::Matrix3d R_src = (Eigen::AngleAxisd(s.theta_rest - rad(90), Eigen::Vector3d::UnitZ()) *
+                                   Eigen::AngleAxisd(-s.phi_rest, Eigen::Vector3d::UnitY()) *
+                                   Eigen::AngleAxisd(s.zeta_rest, Eigen::Vector3d::UnitX()))
+                                      .toRotationMatrix();
+    const Eigen::Matrix3d R = R_HB(s.side, s.theta_rest, s.phi_rest, s.zeta_rest);
+    const Whisker rest = make_rest_whisker(s, 30);
+    for (const Eigen::Vector3d& n : rest.rest_nodes_B()) {
+      EXPECT_NEAR(n.y(), s.curvature * n.x() * n.x(), 1e-12);  // vibrissa's parabola, concave toward +y
+      const Eigen::Vector3d src = R_src * Eigen::Vector3d(n.x(), 0.0, -s.curvature * n.x() * n.x());
+      EXPECT_NEAR((R * n - src).norm(), 0.0, 1e-14) << s.name;
+    }
+  }
+}
+
+TEST(Morphology, RightSideWhiskersPointOutwardAndDorsalRowsPointUp) {
+  // The rest whiskers of the right side emerge laterally (+x of the head); row A (dorsal) points above row E.
+  const Morphology m = towal2011(Sides::right);
+  for (const WhiskerSpec& s : m.whiskers) {
+    const Eigen::Vector3d x_H = R_HB(s.side, s.theta_rest, s.phi_rest, s.zeta_rest).col(0);
+    EXPECT_GT(x_H.x(), 0.0) << s.name;
+  }
+  const auto up = [&](const std::string& l) {
+    const WhiskerSpec& s = find(m, l);
+    return R_HB(s.side, s.theta_rest, s.phi_rest, s.zeta_rest).col(0).z();
+  };
+  EXPECT_GT(up("A1R"), up("C1R"));
+  EXPECT_GT(up("C1R"), up("E1R"));
+}
+
+TEST(Morphology, BelliTableAndBaseRadiusModel) {
+  const Morphology m = belli2018(Sides::both);
+  ASSERT_EQ(m.whiskers.size(), 54u);
+  const WhiskerSpec& c1 = find(m, "C1R");
+  EXPECT_NEAR(c1.arc_length / mm, 52.8, 1e-12);
+  EXPECT_NEAR(c1.curvature * mm, 0.00694, 1e-12);
+  EXPECT_NEAR(c1.zeta_rest, rad(-20.8), 1e-12);
+  // d_base = 0.041 + 0.002 S + 0.011 row - 0.0039 col [mm] (data sheet §2): C1 -> 0.041 + 0.1056 + 0.033 - 0.0039.
+  EXPECT_NEAR(belli_base_diameter_mm(52.8, 3, 1), 0.1757, 1e-12);
+  EXPECT_NEAR(c1.base_radius, 0.5 * 0.1757 * mm, 1e-15);
+  EXPECT_EQ(c1.taper_ratio, 15.0);
+  EXPECT_EQ(find(m, "C1L").p_H_base.x(), -c1.p_H_base.x());
+}
+
+TEST(Morphology, BelliAndTowalAgreeOnTheRelativeLayout) {
+  // The data sheet warns the Belli base-point mapping uses another origin: differences between two whiskers
+  // must still agree with Towal's to ~1.5 mm.
+  const Morphology t = towal2011(Sides::right), b = belli2018(Sides::right);
+  const Eigen::Vector3d dt = find(t, "C1R").p_H_base - find(t, "C4R").p_H_base;
+  const Eigen::Vector3d db = find(b, "C1R").p_H_base - find(b, "C4R").p_H_base;
+  EXPECT_LT((dt - db).norm(), 1.5 * mm);
+}
+
+TEST(Morphology, ByNameAndUnknownNamesAreErrorsNamingTheField) {
+  EXPECT_EQ(morphology_by_name("belli2018").whiskers.size(), 27u);
+  try {
+    morphology_by_name("towal2012");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("morphology.source"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("towal2012"), std::string::npos);
+  }
+  try {
+    select_whiskers(towal2011(Sides::right), {"C2", "Z9"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("morphology.whiskers"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("Z9"), std::string::npos);
+  }
+  const Morphology sel = select_whiskers(towal2011(Sides::both), {"C2", "D1R"});
+  EXPECT_EQ(sel.whiskers.size(), 3u);
+}
+
+TEST(Morphology, UserCsvTableWithTheSameColumns) {
+  std::istringstream csv(
+      "name,side,S_mm,A_per_mm,theta_deg,phi_deg,zeta_deg,base_x_mm,base_y_mm,base_z_mm,base_radius_um\n"
+      "C2,right,45.2,0.00885,56.9,11,21.5,6.8,-2.9,0.5,90\n"
+      "C2,left,45.2,0.00885,56.9,11,21.5,6.8,-2.9,0.5,90\n");
+  const Morphology m = morphology_from_csv(csv);
+  ASSERT_EQ(m.whiskers.size(), 2u);
+  EXPECT_NEAR(m.whiskers[0].arc_length, 45.2 * mm, 1e-15);
+  EXPECT_NEAR(m.whiskers[0].curvature, 8.85, 1e-12);
+  EXPECT_NEAR(m.whiskers[0].base_radius, 90e-6, 1e-18);
+  EXPECT_NEAR(m.whiskers[1].p_H_base.x(), -6.8 * mm, 1e-15);
+  EXPECT_EQ(m.whiskers[1].row, 3);
+  EXPECT_EQ(m.whiskers[1].column, 2);
+
+  std::istringstream bad("name,S_mm,A_per_mm,theta_deg,phi_deg,zeta_deg,base_x_mm,base_y_mm,base_z_mm\n"
+                         "C2,45.2,0.00885,nan,11,21.5,6.8,-2.9,0.5\n");
+  try {
+    morphology_from_csv(bad, "my.csv");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("theta_deg"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("my.csv line 2"), std::string::npos) << e.what();
+  }
+  std::istringstream bad_name("name,S_mm,A_per_mm,theta_deg,phi_deg,zeta_deg,base_x_mm,base_y_mm,base_z_mm\n"
+                              "Q2,45.2,0.00885,50,11,21.5,6.8,-2.9,0.5\n");
+  EXPECT_THROW(morphology_from_csv(bad_name), std::invalid_argument);
+}
+
+TEST(Morphology, UserJsonTable) {
+  const auto j = nlohmann::json::parse(R"([{"name": "B1", "S_mm": 40, "A_per_mm": 0.01, "theta_deg": 50,
+     "phi_deg": 15, "zeta_deg": 0, "base_x_mm": 7, "base_y_mm": -5, "base_z_mm": 1}])");
+  const Morphology m = morphology_from_json(j);
+  ASSERT_EQ(m.whiskers.size(), 1u);
+  EXPECT_EQ(m.whiskers[0].row, 2);
+  EXPECT_NEAR(m.whiskers[0].phi_rest, rad(15), 1e-15);
+  // Default radius from Belli's model: 0.041 + 0.08 + 0.022 - 0.0039 = 0.1391 mm diameter.
+  EXPECT_NEAR(m.whiskers[0].base_radius, 0.5 * 0.1391 * mm, 1e-15);
+  auto missing = j;
+  missing[0].erase("S_mm");
+  try {
+    morphology_from_json(missing, "arr.json");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("arr.json[0].S_mm"), std::string::npos) << e.what();
+  }
+}

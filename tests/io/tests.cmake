@@ -1,0 +1,1 @@
+set(VIBRISSA_TEST_SOURCES ${CMAKE_CURRENT_LIST_DIR}/trial_io_test.cpp)
