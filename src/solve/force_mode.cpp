@@ -58,12 +58,12 @@ Solution solve_dead_load(const Whisker& w, const Eigen::Vector3d& force_W, doubl
   };
   auto lm = solve_for(target_B, u0);
   if (!lm.converged) {  // continuation in the load magnitude from the unloaded rod
-    Eigen::Vector3d u = w.rest_link_frames_B()[static_cast<std::size_t>(k)].transpose() * target_B * 0.0;
+    Eigen::Vector3d u = Eigen::Vector3d::Zero();  // the exact solution at zero load
     double lambda = 0.0, step = 0.125;
     int iterations = lm.iterations;
     while (lambda < 1.0 && step > 1.0 / 4096.0) {
       const double next = std::min(1.0, lambda + step);
-      const auto a = solve_for(next * target_B, u.isZero(0.0) ? Eigen::Vector3d(w.rest_link_frames_B()[static_cast<std::size_t>(k)].transpose() * next * target_B) : u);
+      const auto a = solve_for(next * target_B, u);
       iterations += a.iterations;
       if (a.converged) {
         u = a.u;
