@@ -83,10 +83,12 @@ void register_array(CLI::App& app) {
     {
       Progress progress("simulating", total);
       std::size_t shown = 0;
-      result = array::simulate_array(config, [&](std::size_t done, std::size_t) {
+      RunControl control;
+      control.progress = [&](std::size_t done, std::size_t) {
         if (done > shown) progress.advance(done - shown);
         shown = done;
-      });
+      };
+      result = array::simulate_array(config, control);
     }
     std::cout << "simulated " << total << " whisker-frames in " << std::fixed << std::setprecision(2)
               << result.wall_seconds << " s (" << result.solves << " edge solves";

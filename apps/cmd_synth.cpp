@@ -57,7 +57,13 @@ void register_synth(CLI::App& app) {
     o->noise_position = (*mm)[2] * 1e-6;
     Progress progress("simulating frames", static_cast<std::size_t>(o->duration * o->frame_rate));
     trial::SynthStats st;
-    const trial::Trial t = trial::synthesize_trial(*o, &st, [&progress](std::size_t k) { progress.advance(k); });
+    RunControl control;
+    std::size_t shown = 0;
+    control.progress = [&](std::size_t done, std::size_t) {
+      progress.advance(done - shown);
+      shown = done;
+    };
+    const trial::Trial t = trial::synthesize_trial(*o, &st, control);
     progress.finish();
     io::write_trial(t, *out);
     std::cout << "vibrissa synth: " << st.frames << " frames, " << st.periods << " contact periods, "

@@ -54,9 +54,14 @@ void register_trial(CLI::App& app) {
     std::size_t contact = 0;
     for (auto c : tr.contact) contact += c;
     Progress progress("solving contact frames", contact);
-    opt.progress = [&progress](std::size_t k) { progress.advance(k); };
+    RunControl control;
+    std::size_t shown = 0;
+    control.progress = [&](std::size_t done, std::size_t) {
+      progress.advance(done - shown);
+      shown = done;
+    };
     const auto t0 = std::chrono::steady_clock::now();
-    const trial::PipelineResult result = trial::run_pipeline(tr, opt);
+    const trial::PipelineResult result = trial::run_pipeline(tr, opt, control);
     trial::AnalysisOptions aopt;
     if (a->mu_eq7 >= 0.0) aopt.mu_eq7 = a->mu_eq7;
     const trial::TrialAnalysis analysis = trial::analyse_trial(result, aopt);

@@ -307,7 +307,7 @@ void validate(const SimulationConfig& c) {
   if (c.threads < 0) fail("threads must be >= 0, got " + std::to_string(c.threads));
 }
 
-ArrayResult simulate_array(const SimulationConfig& c, const std::function<void(std::size_t, std::size_t)>& progress) {
+ArrayResult simulate_array(const SimulationConfig& c, const RunControl& control) {
   validate(c);
   const auto start = std::chrono::steady_clock::now();
   ArrayResult r;
@@ -344,7 +344,7 @@ ArrayResult simulate_array(const SimulationConfig& c, const std::function<void(s
   }
 
   const long pairs = static_cast<long>(r.n_pitches * r.n_whiskers);
-  std::atomic<std::size_t> done{0};
+  ProgressCounter counter(control, total);
   std::size_t solves = 0, failed = 0;
   std::exception_ptr error;
   std::mutex error_mutex;
@@ -352,21 +352,20 @@ ArrayResult simulate_array(const SimulationConfig& c, const std::function<void(s
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) reduction(+ : solves, failed)
   for (long pair = 0; pair < pairs; ++pair) {
     try {
+      counter.check();
       const std::size_t pi = static_cast<std::size_t>(pair) / r.n_whiskers;
       const std::size_t wi = static_cast<std::size_t>(pair) % r.n_whiskers;
       PairRun run(c, prep, r, pi, wi);
       run.run();
       solves += run.solves;
       failed += run.failed;
+      counter.advance(r.n_frames);
     } catch (...) {
       const std::lock_guard<std::mutex> lock(error_mutex);
       if (!error) error = std::current_exception();
     }
-    const std::size_t now_done = ++done;
-    if (progress && omp_get_thread_num() == 0) progress(now_done * r.n_frames, total);
   }
   if (error) std::rethrow_exception(error);
-  if (progress) progress(total, total);
   r.solves = solves;
   r.failed_solves = failed;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

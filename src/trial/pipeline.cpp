@@ -77,7 +77,7 @@ int choose_edge(const Trial& t, const ContactPeriod& p, const Whisker& w_onset) 
 
 }  // namespace
 
-PipelineResult run_pipeline(const Trial& trial, const PipelineOptions& opt) {
+PipelineResult run_pipeline(const Trial& trial, const PipelineOptions& opt, const RunControl& control) {
   PipelineResult res;
   res.pre = preprocess(trial, opt.preprocess);
   const Trial& t = res.pre.trial;
@@ -108,7 +108,10 @@ PipelineResult run_pipeline(const Trial& trial, const PipelineOptions& opt) {
   const WhiskerProperties props = whisker_properties(t.meta.material);
 
   std::exception_ptr error;
-  std::mutex error_mutex, progress_mutex;
+  std::mutex error_mutex;
+  std::size_t contact_frames = 0;
+  for (const ContactPeriod& p : periods) contact_frames += p.size();
+  ProgressCounter counter(control, contact_frames);
 #pragma omp parallel for schedule(dynamic)
   for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t>(periods.size()); ++pi) {
     try {
@@ -131,6 +134,7 @@ PipelineResult run_pipeline(const Trial& trial, const PipelineOptions& opt) {
       std::optional<double> hint_cp, hint_edge;
       std::optional<Eigen::Vector3d> prev_fric;
       for (std::size_t i = p.first; i <= p.last; ++i) {
+        counter.check();
         FrameResult& fr = res.frames[i];
         fr.period = static_cast<int>(pi);
         const std::size_t k = i - p.first;
@@ -161,10 +165,7 @@ PipelineResult run_pipeline(const Trial& trial, const PipelineOptions& opt) {
           warm_fric = s.status == Status::converged ? std::optional<LoadState>(s.state) : std::nullopt;
           prev_fric = s.status == Status::converged ? std::optional<Eigen::Vector3d>(s.contact_point) : std::nullopt;
         }
-      }
-      if (opt.progress) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        opt.progress(p.size());
+        counter.advance();
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(error_mutex);

@@ -48,7 +48,7 @@ std::optional<bool> past_peg(const Whisker& w, const Edge& edge) {
 
 }  // namespace
 
-Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const std::function<void(std::size_t)>& progress) {
+Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const RunControl& control) {
   require(o.duration > 0.0 && o.frame_rate > 0.0, "duration and frame rate must be positive");
   require(o.whisk_frequency > 0.0 && o.whisk_frequency < 0.5 * o.frame_rate, "whisk frequency must be in (0, fs/2)");
   require(o.whisker_length > 0.0 && o.peg_distance > 0.0, "whisker length and peg distance must be positive");
@@ -98,6 +98,7 @@ Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const std::func
   std::optional<LoadState> warm;
   Eigen::Vector3d previous_contact = Eigen::Vector3d::Zero();
   std::optional<Eigen::Vector3d> approach;
+  ProgressCounter counter(control, n);
   SolveOptions sopt;
   sopt.compute_shape = o.shapes;
   for (std::size_t i = 0; i < n; ++i) {
@@ -153,7 +154,7 @@ Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const std::func
     if (o.shapes && t.shape_W[i].empty())
       for (int k = 0; k < o.shape_nodes; ++k)
         t.shape_W[i].push_back(w.rest_point_W(o.whisker_length * k / (o.shape_nodes - 1)));
-    if (progress) progress(1);
+    counter.advance();
   }
 
   // Tracking noise (optional), then the tracked columns.

@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include "vibrissa/array/head.hpp"
+#include "vibrissa/core/run_control.hpp"
 #include "vibrissa/array/kinematics.hpp"
 #include "vibrissa/array/morphology.hpp"
 #include "vibrissa/array/objects.hpp"
@@ -101,8 +102,8 @@ struct ArrayResult {
 /// Frame times t_k = start + k (end − start) / (frames − 1).
 std::vector<double> uniform_times(double start, double end, int frames);
 
-/// Runs every (pitch, whisker) pair in parallel. `progress(done, total)` is called from one thread.
-ArrayResult simulate_array(const SimulationConfig& config,
-                           const std::function<void(std::size_t, std::size_t)>& progress = {});
+/// Runs every (pitch, whisker) pair in parallel. Progress counts whisker-frames (pitches x whiskers x frames),
+/// advanced per (pitch, whisker) run; cancel is polled per run.
+ArrayResult simulate_array(const SimulationConfig& config, const RunControl& control = {});
 
 }  // namespace vibrissa::array

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "vibrissa/core/run_control.hpp"
 #include "vibrissa/solve/options.hpp"
 #include "vibrissa/solve/solution.hpp"
 #include "vibrissa/trial/preprocess.hpp"
@@ -55,7 +56,6 @@ struct PipelineOptions {
   /// Horizontal viewing axis of the Fig. 2f projection (the camera's line of sight, normal to the projection
   /// plane); default: normal to the edge and to the mean base-to-edge direction (a front-on view).
   std::optional<Eigen::Vector3d> view_direction_W;
-  std::function<void(std::size_t)> progress;  ///< called with the number of frames just finished (thread-safe)
 };
 
 struct PeriodInfo {
@@ -73,6 +73,7 @@ struct PipelineResult {
   Eigen::Vector3d view_direction_W = Eigen::Vector3d::Zero();
 };
 
-PipelineResult run_pipeline(const Trial& trial, const PipelineOptions& options = {});
+/// Progress counts contact frames solved (total: the trial's contact frames); cancel is polled per frame.
+PipelineResult run_pipeline(const Trial& trial, const PipelineOptions& options = {}, const RunControl& control = {});
 
 }  // namespace vibrissa::trial

@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 
+#include "vibrissa/core/run_control.hpp"
 #include "vibrissa/trial/format.hpp"
 
 namespace vibrissa::trial {
@@ -47,7 +48,7 @@ struct SynthStats {
 };
 
 /// Throws std::invalid_argument for non-physical options.
-Trial synthesize_trial(const SynthOptions& options, SynthStats* stats = nullptr,
-                       const std::function<void(std::size_t)>& progress = {});
+/// Progress counts frames simulated; cancel is polled per frame.
+Trial synthesize_trial(const SynthOptions& options, SynthStats* stats = nullptr, const RunControl& control = {});
 
 }  // namespace vibrissa::trial
