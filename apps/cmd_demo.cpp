@@ -18,7 +18,7 @@ void print(const char* title, const Solution& s, double micros) {
   const auto& wf = s.whisker_frame;
   constexpr double deg = 180.0 / std::numbers::pi;
   std::printf("\n%s\n", title);
-  std::printf("  status            %s (%s)\n", std::string(to_string(s.status)).c_str(), s.message.c_str());
+  std::printf("  status            %s (%s)\n", std::string(to_string(s.status)).c_str(), std::string(s.message).c_str());
   std::printf("  solve time        %.1f us, %d iterations, residual %.2e m\n", micros, s.iterations, s.residual);
   std::printf("  arc length s      %.3f mm\n", s.arc_length * 1e3);
   std::printf("  contact point     (%.3f, %.3f, %.3f) mm, world\n", s.contact_point.x() * 1e3,

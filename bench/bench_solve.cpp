@@ -61,9 +61,9 @@ BENCHMARK(BM_EdgeCold);
 void BM_EdgeWarm(benchmark::State& state) {
   // Warm start from the previous frame of a 1 kHz whisk (0.05 deg of protraction earlier).
   const Whisker w = bench_whisker();
-  Pose prev = w.pose();
+  Pose prev = w.placement().pose();
   prev.theta -= 0.05 * std::numbers::pi / 180.0;
-  const Solution before = solve_edge(w.placed(prev), bench_peg(), std::nullopt, fast());
+  const Solution before = solve_edge(w, prev, bench_peg(), std::nullopt, fast());
   for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, fast(), &before.state));
 }
 BENCHMARK(BM_EdgeWarm);

@@ -11,6 +11,7 @@
 // frames run in parallel. Results do not depend on the number of threads.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "vibrissa/contact/tracker.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa::python {
@@ -272,12 +274,12 @@ void store(const Outputs::Raw& r, py::ssize_t i, const Solution& s) {
   }
 }
 
-/// Per-frame pose override: the whisker re-placed at (base, angles) when either is given.
+/// Per-frame placement: the whisker's own placement, overridden by (base, angles) when either is given.
 struct Poses {
   Field base, angles;
-  [[nodiscard]] bool any() const { return base.present() || angles.present(); }
-  [[nodiscard]] Pose at(const Whisker& w, py::ssize_t s, py::ssize_t f) const {
-    Pose p = w.pose();
+  [[nodiscard]] Placement at(const Whisker& w, py::ssize_t s, py::ssize_t f) const {
+    if (!base.present() && !angles.present()) return w.placement();
+    Pose p = w.placement().pose();
     if (base.present()) p.p_W_base = base.vec(s, f);
     if (angles.present()) {
       const Eigen::Vector3d a = angles.vec(s, f);
@@ -285,7 +287,7 @@ struct Poses {
       p.phi = a.y();
       p.zeta = a.z();
     }
-    return p;
+    return Placement(p);
   }
 };
 
@@ -296,11 +298,18 @@ int thread_count(const py::object& threads) {
   return n;
 }
 
-/// Runs `solve_one(s, f, warm) -> Solution` over the layout, in parallel over independent work items, and
-/// fills `out`. With `sequential_series`, frame f-1's state warm-starts frame f (when it converged).
+/// Runs `solve_one(s, f)` over every (series, frame) of the layout in parallel (independent frames).
+/// With `tracked` instead, each series runs in time order through one ContactTracker (contact/tracker.hpp):
+/// `frame_input(s, f, X, segment, input)` describes frame f, and the tracker carries warm starts and contact
+/// history from frame to frame; series run in parallel.
+struct SeriesTracking {
+  TrackerOptions options;
+  std::function<void(py::ssize_t, py::ssize_t, Placement&, std::optional<EdgeSegment>&, TrackedInput&)> frame_input;
+};
+
 template <class SolveOne>
-py::dict run_batch(const Layout& L, const Whiskers& ws, bool sequential_series, bool shapes, const py::object& threads,
-                   SolveOne&& solve_one) {
+py::dict run_batch(const Layout& L, const Whiskers& ws, const SeriesTracking* tracked, bool shapes,
+                   const py::object& threads, SolveOne&& solve_one) {
   py::ssize_t nodes = 0;
   if (shapes) {
     nodes = ws.list.front()->links() + 1;
@@ -313,7 +322,7 @@ py::dict run_batch(const Layout& L, const Whiskers& ws, bool sequential_series, 
   Outputs out(L, shapes, nodes);
   const Outputs::Raw raw = out.raw();
   const py::ssize_t S = L.series, F = L.frames;
-  const py::ssize_t items = sequential_series ? S : S * F;
+  const py::ssize_t items = tracked ? S : S * F;
   std::string error;
   bool error_is_value = true;
   py::ssize_t error_item = items;
@@ -322,20 +331,18 @@ py::dict run_batch(const Layout& L, const Whiskers& ws, bool sequential_series, 
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
     for (py::ssize_t item = 0; item < items; ++item) {
       try {
-        if (sequential_series) {
+        if (tracked) {
           const py::ssize_t s = item;
-          std::optional<LoadState> warm;
+          ContactTracker tracker(ws.of(s), tracked->options);
+          Placement X;
+          std::optional<EdgeSegment> segment;
           for (py::ssize_t f = 0; f < F; ++f) {
-            const Solution sol = solve_one(s, f, warm ? &*warm : nullptr);
-            store(raw, s * F + f, sol);
-            if (sol.status == Status::converged)
-              warm = sol.state;
-            else
-              warm.reset();
+            TrackedInput input;
+            tracked->frame_input(s, f, X, segment, input);
+            store(raw, s * F + f, tracker.step_tracked(X, segment ? &*segment : nullptr, input).solution);
           }
         } else {
-          const Solution sol = solve_one(item / F, item % F, nullptr);
-          store(raw, item, sol);
+          store(raw, item, solve_one(item / F, item % F));
         }
       } catch (const std::exception& e) {
 #pragma omp critical(vibrissa_batch_error)
@@ -348,13 +355,21 @@ py::dict run_batch(const Layout& L, const Whiskers& ws, bool sequential_series, 
     }
   }
   if (error_item < items) {
-    const std::string where = sequential_series ? "series " + std::to_string(error_item)
-                                                : "series " + std::to_string(error_item / F) + ", frame " +
-                                                      std::to_string(error_item % F);
+    const std::string where = tracked ? "series " + std::to_string(error_item)
+                                      : "series " + std::to_string(error_item / F) + ", frame " +
+                                            std::to_string(error_item % F);
     if (error_is_value) throw py::value_error(error + " (" + where + ")");
     throw std::runtime_error(error + " (" + where + ")");
   }
   return out.to_dict();
+}
+
+/// The edge of frame (s, f): a point and an optional direction (default world +z).
+std::optional<EdgeSegment> edge_at(const Field& points, const Field& directions, py::ssize_t s, py::ssize_t f) {
+  Edge e;
+  e.point = points.vec(s, f);
+  e.direction = directions.present() ? directions.vec(s, f) : Eigen::Vector3d::UnitZ();
+  return infinite_segment(e);
 }
 
 }  // namespace
@@ -372,11 +387,10 @@ void bind_batch(py::module_& m) {
         const Layout L = layout_of(ws, {&fF, &fs, &fa, &poses.base, &poses.angles});
         SolveOptions o = options_arg(options);
         o.compute_shape = shapes;
-        return run_batch(L, ws, false, shapes, threads, [&](py::ssize_t s, py::ssize_t f, const LoadState*) {
+        return run_batch(L, ws, nullptr, shapes, threads, [&](py::ssize_t s, py::ssize_t f) {
           const Whisker& w = ws.of(s);
           const double ang = fa.present() ? fa.scalar(s, f) : 0.0;
-          if (poses.any()) return solve_force(w.placed(poses.at(w, s, f)), fF.scalar(s, f), fs.scalar(s, f), ang, o);
-          return solve_force(w, fF.scalar(s, f), fs.scalar(s, f), ang, o);
+          return solve_force(w, poses.at(w, s, f), fF.scalar(s, f), fs.scalar(s, f), ang, o);
         });
       },
       py::arg("whisker"), py::arg("force"), py::arg("arc_length"), py::arg("angle") = py::none(), py::kw_only(),
@@ -397,13 +411,22 @@ void bind_batch(py::module_& m) {
         const Layout L = layout_of(ws, {&fp, &fh, &fd, &poses.base, &poses.angles});
         SolveOptions o = options_arg(options);
         o.compute_shape = shapes;
-        return run_batch(L, ws, warm_start, shapes, threads, [&](py::ssize_t s, py::ssize_t f, const LoadState* warm) {
+        auto hint_at = [&](py::ssize_t s, py::ssize_t f) {
+          return fh.present() ? std::optional<double>(fh.scalar(s, f)) : std::nullopt;
+        };
+        SeriesTracking tracking{TrackerOptions{ContactMode::contact_point, 0.0, o},
+                                [&](py::ssize_t s, py::ssize_t f, Placement& X, std::optional<EdgeSegment>& seg,
+                                    TrackedInput& in) {
+                                  X = poses.at(ws.of(s), s, f);
+                                  if (fd.present()) seg = edge_at(fp, fd, s, f);
+                                  in.p_W_contact = fp.vec(s, f);
+                                  in.arc_length_hint = hint_at(s, f);
+                                }};
+        return run_batch(L, ws, warm_start ? &tracking : nullptr, shapes, threads, [&](py::ssize_t s, py::ssize_t f) {
           const Whisker& w = ws.of(s);
-          const std::optional<double> hint = fh.present() ? std::optional<double>(fh.scalar(s, f)) : std::nullopt;
           const std::optional<Eigen::Vector3d> dir =
               fd.present() ? std::optional<Eigen::Vector3d>(fd.vec(s, f)) : std::nullopt;
-          if (poses.any()) return solve_point(w.placed(poses.at(w, s, f)), fp.vec(s, f), hint, o, warm, dir);
-          return solve_point(w, fp.vec(s, f), hint, o, warm, dir);
+          return solve_point(w, poses.at(w, s, f), fp.vec(s, f), hint_at(s, f), o, nullptr, dir);
         });
       },
       py::arg("whisker"), py::arg("points"), py::kw_only(), py::arg("arc_length_hint") = py::none(),
@@ -427,16 +450,24 @@ void bind_batch(py::module_& m) {
         const Layout L = layout_of(ws, {&fp, &fd, &fh, &fa, &poses.base, &poses.angles});
         SolveOptions o = options_arg(options);
         o.compute_shape = shapes;
-        return run_batch(L, ws, warm_start, shapes, threads, [&](py::ssize_t s, py::ssize_t f, const LoadState* warm) {
+        auto hint_at = [&](py::ssize_t s, py::ssize_t f) {
+          return fh.present() ? std::optional<double>(fh.scalar(s, f)) : std::nullopt;
+        };
+        auto approach_at = [&](py::ssize_t s, py::ssize_t f) {
+          return fa.present() ? std::optional<Eigen::Vector3d>(fa.vec(s, f)) : std::nullopt;
+        };
+        SeriesTracking tracking{TrackerOptions{ContactMode::edge, 0.0, o},
+                                [&](py::ssize_t s, py::ssize_t f, Placement& X, std::optional<EdgeSegment>& seg,
+                                    TrackedInput& in) {
+                                  X = poses.at(ws.of(s), s, f);
+                                  seg = edge_at(fp, fd, s, f);
+                                  in.arc_length_hint = hint_at(s, f);
+                                  in.approach_W = approach_at(s, f);
+                                }};
+        return run_batch(L, ws, warm_start ? &tracking : nullptr, shapes, threads, [&](py::ssize_t s, py::ssize_t f) {
           const Whisker& w = ws.of(s);
-          Edge e;
-          e.point = fp.vec(s, f);
-          e.direction = fd.present() ? fd.vec(s, f) : Eigen::Vector3d::UnitZ();
-          const std::optional<double> hint = fh.present() ? std::optional<double>(fh.scalar(s, f)) : std::nullopt;
-          const std::optional<Eigen::Vector3d> app =
-              fa.present() ? std::optional<Eigen::Vector3d>(fa.vec(s, f)) : std::nullopt;
-          if (poses.any()) return solve_edge(w.placed(poses.at(w, s, f)), e, hint, o, warm, app);
-          return solve_edge(w, e, hint, o, warm, app);
+          return solve_edge(w, poses.at(w, s, f), edge_at(fp, fd, s, f)->line(), hint_at(s, f), o, nullptr,
+                            approach_at(s, f));
         });
       },
       py::arg("whisker"), py::arg("edge_points"), py::arg("edge_directions") = py::none(), py::kw_only(),
@@ -466,46 +497,24 @@ void bind_batch(py::module_& m) {
         const Layout L = layout_of(ws, {&fp, &fd, &fa, &poses.base, &poses.angles});
         SolveOptions o = options_arg(options);
         o.compute_shape = shapes;
-        // Contact history lives per series; each series is run by one thread at a time.
-        std::vector<std::optional<Eigen::Vector3d>> previous(static_cast<std::size_t>(L.series));
-        if (has_q0) {
-          const py::ssize_t rows = q0.ndim() == 1 ? 1 : q0.shape(0);
-          if (rows != 1 && rows != L.series)
-            throw py::value_error("initial_contact has " + std::to_string(rows) + " rows but the batch has " +
-                                  std::to_string(L.series) + " series");
-          for (py::ssize_t k = 0; k < L.series; ++k) {
-            const double* p = q0.data() + 3 * (rows == 1 ? 0 : k);
-            previous[static_cast<std::size_t>(k)] = Eigen::Vector3d(p[0], p[1], p[2]);
-          }
-        }
-        return run_batch(L, ws, true, shapes, threads, [&](py::ssize_t s, py::ssize_t f, const LoadState* warm) {
-          Edge e;
-          e.point = fp.vec(s, f);
-          e.direction = fd.present() ? fd.vec(s, f) : Eigen::Vector3d::UnitZ();
-          const std::optional<Eigen::Vector3d> app =
-              fa.present() ? std::optional<Eigen::Vector3d>(fa.vec(s, f)) : std::nullopt;
-          std::optional<Whisker> moved;
-          if (poses.any()) moved = ws.of(s).placed(poses.at(ws.of(s), s, f));
-          const Whisker& placed = moved ? *moved : ws.of(s);
-          auto& prev = previous[static_cast<std::size_t>(s)];
-          if (!prev) {  // no history: the contact starts where the frictionless edge solution puts it
-            SolveOptions inner = o;
-            inner.compute_shape = false;
-            const Solution free = solve_edge(placed, e, std::nullopt, inner, warm, app);
-            if (free.status != Status::converged) {
-              Solution out = free;
-              if (shapes) out = solve_edge(placed, e, std::nullopt, o, warm, app);
-              return out;
-            }
-            prev = free.contact_point;
-          }
-          Solution sol = solve_frictional_edge(placed, e, mu, *prev, o, warm, app);
-          if (sol.status == Status::converged)
-            prev = sol.contact_point;
-          else
-            prev.reset();  // contact lost: the next touch starts afresh
-          return sol;
-        });
+        const py::ssize_t rows = has_q0 ? (q0.ndim() == 1 ? 1 : q0.shape(0)) : 0;
+        if (has_q0 && rows != 1 && rows != L.series)
+          throw py::value_error("initial_contact has " + std::to_string(rows) + " rows but the batch has " +
+                                std::to_string(L.series) + " series");
+        TrackerOptions topt{ContactMode::frictional_edge, mu, o};
+        validate(topt);
+        SeriesTracking tracking{topt, [&](py::ssize_t s, py::ssize_t f, Placement& X, std::optional<EdgeSegment>& seg,
+                                          TrackedInput& in) {
+                                  X = poses.at(ws.of(s), s, f);
+                                  seg = edge_at(fp, fd, s, f);
+                                  if (fa.present()) in.approach_W = fa.vec(s, f);
+                                  if (has_q0 && f == 0) {
+                                    const double* p = q0.data() + 3 * (rows == 1 ? 0 : s);
+                                    in.initial_contact_W = Eigen::Vector3d(p[0], p[1], p[2]);
+                                  }
+                                }};
+        // Contact history lives per series: always tracked, series in parallel.
+        return run_batch(L, ws, &tracking, shapes, threads, [](py::ssize_t, py::ssize_t) { return Solution{}; });
       },
       py::arg("whisker"), py::arg("edge_points"), py::arg("edge_directions") = py::none(), py::arg("mu") = 0.0,
       py::kw_only(), py::arg("initial_contact") = py::none(), py::arg("approach") = py::none(),

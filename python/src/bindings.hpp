@@ -22,6 +22,8 @@ Scheme scheme_arg(py::handle obj);
 BaseJoint base_joint_arg(py::handle obj);
 /// Pose argument: a Pose, or None for the default pose.
 Pose pose_arg(py::handle obj);
+/// Where a solve places the whisker: a Pose, or None for the placement the whisker was built with.
+Placement placement_arg(py::handle obj, const Whisker& whisker);
 /// Options argument: a SolveOptions, or None for the defaults.
 SolveOptions options_arg(py::handle obj);
 /// Warm start: a LoadState, a Solution (its .state) or None.

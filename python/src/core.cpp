@@ -82,6 +82,11 @@ Pose pose_arg(py::handle obj) {
   return obj.cast<Pose>();
 }
 
+Placement placement_arg(py::handle obj, const Whisker& whisker) {
+  if (obj.is_none()) return whisker.placement();
+  return Placement(pose_arg(obj));
+}
+
 void bind_core(py::module_& m) {
   py::enum_<Scheme>(m, "Scheme", "How the continuous rod is discretised into joints (docs/conventions.md).")
       .value("second_order", Scheme::second_order, "trapezoidal joint compliance, error O(1/N^2) (default)")
@@ -249,8 +254,10 @@ void bind_core(py::module_& m) {
           py::arg("length"), py::arg("A"), py::arg("B"), py::kw_only(), py::arg("properties") = py::none(),
           py::arg("pose") = py::none(),
           "Planar rest shape y = A·x^3 + B·x^2 in the whisker frame: A [1/m^2], B [1/m], arc length [m].")
-      .def("placed", [](const Whisker& w, const Pose& pose) { return w.placed(pose); }, py::arg("pose"),
-           "The same whisker at another pose (the rest shape in B is unchanged).")
+      .def("placed", [](const Whisker& w, const Pose& pose) { return w.with_placement(Placement(pose)); },
+           py::arg("pose"),
+           "A copy of the whisker whose default pose is `pose` (the rest shape in B is unchanged). Per-frame "
+           "code passes `pose=` to the solves (or pose_base/pose_angles to the batches) instead of copying.")
       .def_property_readonly("links", &Whisker::links, "N, number of links.")
       .def_property_readonly("length", &Whisker::length, "Arc length [m].")
       .def_property_readonly("rest_nodes_B", [](const Whisker& w) { return to_array(w.rest_nodes_B()); },
@@ -259,7 +266,7 @@ void bind_core(py::module_& m) {
           "rest_nodes_W",
           [](const Whisker& w) {
             std::vector<Eigen::Vector3d> nodes = w.rest_nodes_B();
-            for (auto& p : nodes) p = w.to_world(p);
+            for (auto& p : nodes) p = w.placement().to_world(p);
             return to_array(nodes);
           },
           "Rest nodes in world [m], shape (N+1, 3), base first.")
@@ -277,11 +284,13 @@ void bind_core(py::module_& m) {
                              "1/(G J) at each joint [1/(N·m^2)].")
       .def_property_readonly("base_bending_stiffness", &Whisker::base_bending_stiffness, "E I at the base [N·m^2].")
       .def_property_readonly("properties", &Whisker::properties, "The WhiskerProperties it was built with (a copy).")
-      .def_property_readonly("R_WB", [](const Whisker& w) { return to_array(w.R_WB()); },
+      .def_property_readonly("R_WB", [](const Whisker& w) { return to_array(w.placement().R_WB); },
                              "Rotation whisker frame -> world, shape (3, 3).")
-      .def_property_readonly("p_W_base", [](const Whisker& w) { return to_array(w.p_W_base()); },
+      .def_property_readonly("p_W_base", [](const Whisker& w) { return to_array(w.placement().p_W_base); },
                              "Base point in world [m], shape (3,).")
-      .def_property_readonly("pose", &Whisker::pose, "The Pose of the whisker frame.")
+      .def_property_readonly(
+          "pose", [](const Whisker& w) { return w.placement().pose(); },
+          "The Pose it was built with (where solves place it when given no pose=).")
       .def(
           "locate",
           [](const Whisker& w, double s) {
@@ -292,22 +301,22 @@ void bind_core(py::module_& m) {
           },
           py::arg("s"), "(link, h): the link holding arc length s [m] and the distance h [m] past its first node.")
       .def("rest_point_B", [](const Whisker& w, double s) { return to_array(w.rest_point_B(s)); }, py::arg("s"), "Rest point at arc length s [m], whisker frame [m].")
-      .def("rest_point_W", [](const Whisker& w, double s) { return to_array(w.rest_point_W(s)); }, py::arg("s"), "Rest point at arc length s [m], world [m].")
+      .def("rest_point_W", [](const Whisker& w, double s) { return to_array(w.placement().to_world(w.rest_point_B(s))); }, py::arg("s"), "Rest point at arc length s [m], world [m].")
       .def(
           "to_world",
           [](const Whisker& w, const py::object& p_B) {
-            return map_points(p_B, "p_B", [&](const Eigen::Vector3d& p) { return w.to_world(p); });
+            return map_points(p_B, "p_B", [&](const Eigen::Vector3d& p) { return w.placement().to_world(p); });
           },
           py::arg("p_B"), "Whisker-frame point(s) [m], shape (3,) or (M, 3), to world [m].")
       .def(
           "to_body",
           [](const Whisker& w, const py::object& p_W) {
-            return map_points(p_W, "p_W", [&](const Eigen::Vector3d& p) { return w.to_body(p); });
+            return map_points(p_W, "p_W", [&](const Eigen::Vector3d& p) { return w.placement().to_body(p); });
           },
           py::arg("p_W"), "World point(s) [m], shape (3,) or (M, 3), to the whisker frame [m].")
       .def("__repr__", [](const Whisker& w) {
         return "Whisker(links=" + std::to_string(w.links()) + ", length=" + fmt(w.length()) +
-               " m, pose=" + pose_repr(w.pose()) + ")";
+               " m, pose=" + pose_repr(w.placement().pose()) + ")";
       });
 }
 

@@ -4,6 +4,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "vibrissa/contact/contact_geometry.hpp"
 #include "vibrissa/solve/solvers.hpp"
 #include "vibrissa/solve/status.hpp"
 
@@ -54,6 +55,16 @@ void bind_solve(py::module_& m) {
       .value("not_converged", Status::not_converged, "the iteration limit was reached or the solver stalled")
       .def_property_readonly("label", [](Status s) { return std::string(to_string(s)); },
                              "The name used in JSON results (\"converged\", ...).");
+  py::enum_<ContactState>(m, "ContactState", "Whether the whisker touches its object (same codes in every file).")
+      .value("free", ContactState::free, "not touching")
+      .value("contact", ContactState::contact, "touching, in equilibrium")
+      .value("pushed_past", ContactState::pushed_past, "slipped off the tip / snapped past: beyond the object")
+      .def_property_readonly("label", [](ContactState s) { return std::string(to_string(s)); }, "Its name.");
+  py::enum_<FrictionState>(m, "FrictionState", "Coulomb friction state of a contact (frictional edge mode).")
+      .value("none", FrictionState::none, "no friction state (other modes, or no contact)")
+      .value("stick", FrictionState::stick, "the contact held its previous point")
+      .value("slip", FrictionState::slip, "the contact slid along the edge with |F_edge| = mu F_N")
+      .def_property_readonly("label", [](FrictionState s) { return std::string(to_string(s)); }, "Its name.");
   m.def("status_from_string", [](const std::string& name) { return status_from_string(name); }, py::arg("name"),
         "Status from its JSON name; ValueError for an unknown name.");
 
@@ -137,7 +148,11 @@ void bind_solve(py::module_& m) {
                        "Everything a solve reports (spec §2.4); names follow the JSON result of `vibrissa solve`. "
                        "World frame unless the name says otherwise.")
       .def_readonly("status", &Solution::status, "Status of the solve.")
-      .def_readonly("message", &Solution::message, "Why it stopped, in words.")
+      .def_readonly("message", &Solution::message, "Why it stopped, in words (decide from the typed fields).")
+      .def_readonly("contact_state", &Solution::contact_state, "ContactState after the solve.")
+      .def_readonly("friction", &Solution::friction, "FrictionState: stick / slip (frictional edge mode), else none.")
+      .def_readonly("fold", &Solution::fold,
+                    "True when slipped_off because the equilibrium branch ends in a fold (push-past), not at the tip.")
       .def_property_readonly("converged", [](const Solution& s) { return s.status == Status::converged; },
                              "True when status is Status.converged.")
       .def_readonly("force_magnitude", &Solution::force_magnitude, "|F| [N].")
@@ -168,49 +183,54 @@ void bind_solve(py::module_& m) {
       .def("__repr__", [](const Solution& s) {
         return "Solution(status=" + std::string(to_string(s.status)) +
                ", force_magnitude=" + std::string(py::str(py::float_(s.force_magnitude))) +
-               " N, arc_length=" + std::string(py::str(py::float_(s.arc_length))) + " m, message='" + s.message + "')";
+               " N, arc_length=" + std::string(py::str(py::float_(s.arc_length))) + " m, message='" + std::string(s.message) + "')";
       });
   py::implicitly_convertible<Solution, LoadState>();
 
   m.def(
       "solve_force",
-      [](const Whisker& w, double force, double arc_length, double angle, const py::object& options) {
+      [](const Whisker& w, double force, double arc_length, double angle, const py::object& options,
+         const py::object& pose) {
         const SolveOptions o = options_arg(options);
+        const Placement X = placement_arg(pose, w);
         py::gil_scoped_release release;
-        return solve_force(w, force, arc_length, angle, o);
+        return solve_force(w, X, force, arc_length, angle, o);
       },
       py::arg("whisker"), py::arg("force"), py::arg("arc_length"), py::arg("angle") = 0.0, py::kw_only(),
-      py::arg("options") = py::none(),
+      py::arg("options") = py::none(), py::arg("pose") = py::none(),
       "Force mode: a follower force of magnitude `force` [N] normal to the whisker at `arc_length` [m], at "
       "`angle` [rad] about the whisker axis (0 = +y of the loaded link, toward the concave side; pi/2 = +z). "
       "Explicit, O(N).");
   m.def(
       "solve_dead_load",
       [](const Whisker& w, const py::object& force_W, double arc_length, const py::object& options,
-         const py::object& warm) {
+         const py::object& warm, const py::object& pose) {
         const Eigen::Vector3d f = vec3(force_W, "load.force_W");
         const SolveOptions o = options_arg(options);
         const std::optional<LoadState> st = warm_arg(warm);
+        const Placement X = placement_arg(pose, w);
         py::gil_scoped_release release;
-        return solve_dead_load(w, f, arc_length, o, st ? &*st : nullptr);
+        return solve_dead_load(w, X, f, arc_length, o, st ? &*st : nullptr);
       },
       py::arg("whisker"), py::arg("force_W"), py::arg("arc_length"), py::kw_only(), py::arg("options") = py::none(),
-      py::arg("warm") = py::none(),
+      py::arg("warm") = py::none(), py::arg("pose") = py::none(),
       "Dead load: a force with fixed world direction `force_W` [N], shape (3,), applied at `arc_length` [m].");
   m.def(
       "solve_point",
       [](const Whisker& w, const py::object& point_W, const py::object& hint, const py::object& options,
-         const py::object& warm, const py::object& edge_direction_W) {
+         const py::object& warm, const py::object& edge_direction_W, const py::object& pose) {
         const Eigen::Vector3d p = vec3(point_W, "load.point");
         const std::optional<double> h = optional_double(hint, "load.arc_length_hint");
         const SolveOptions o = options_arg(options);
         const std::optional<LoadState> st = warm_arg(warm);
         const std::optional<Eigen::Vector3d> d = optional_vec3(edge_direction_W, "load.edge_direction");
+        const Placement X = placement_arg(pose, w);
         py::gil_scoped_release release;
-        return solve_point(w, p, h, o, st ? &*st : nullptr, d);
+        return solve_point(w, X, p, h, o, st ? &*st : nullptr, d);
       },
       py::arg("whisker"), py::arg("point_W"), py::arg("arc_length_hint") = py::none(), py::kw_only(),
       py::arg("options") = py::none(), py::arg("warm") = py::none(), py::arg("edge_direction_W") = py::none(),
+      py::arg("pose") = py::none(),
       "Contact-point mode: the deflected whisker passes through `point_W` [m] (world, shape (3,)) with the "
       "force normal to it there. Root choice: `warm` (a LoadState or previous Solution) -> the continuous root; "
       "else the root nearest `arc_length_hint` [m]; else the arc length at the target's distance. "
@@ -218,36 +238,57 @@ void bind_solve(py::module_& m) {
   m.def(
       "solve_edge",
       [](const Whisker& w, const py::object& edge, const py::object& hint, const py::object& options,
-         const py::object& warm, const py::object& approach_W) {
+         const py::object& warm, const py::object& approach_W, const py::object& pose) {
         const Edge e = edge_arg(edge);
         const std::optional<double> h = optional_double(hint, "load.arc_length_hint");
         const SolveOptions o = options_arg(options);
         const std::optional<LoadState> st = warm_arg(warm);
         const std::optional<Eigen::Vector3d> a = optional_vec3(approach_W, "load.approach");
+        const Placement X = placement_arg(pose, w);
         py::gil_scoped_release release;
-        return solve_edge(w, e, h, o, st ? &*st : nullptr, a);
+        return solve_edge(w, X, e, h, o, st ? &*st : nullptr, a);
       },
       py::arg("whisker"), py::arg("edge"), py::arg("arc_length_hint") = py::none(), py::kw_only(),
       py::arg("options") = py::none(), py::arg("warm") = py::none(), py::arg("approach_W") = py::none(),
+      py::arg("pose") = py::none(),
       "Edge mode (frictionless slip, spec §2.1): the contact lies on the edge and the force is normal to both "
       "whisker and edge. `approach_W` (world, shape (3,)), if given, is the direction the whisker moved into "
       "the edge; the edge must push against it, else Status.no_contact.");
   m.def(
       "solve_frictional_edge",
       [](const Whisker& w, const py::object& edge, double mu, const py::object& previous_contact_W,
-         const py::object& options, const py::object& warm, const py::object& approach_W) {
+         const py::object& options, const py::object& warm, const py::object& approach_W, const py::object& pose) {
         const Edge e = edge_arg(edge);
         const Eigen::Vector3d q = vec3(previous_contact_W, "previous_contact");
         const SolveOptions o = options_arg(options);
         const std::optional<LoadState> st = warm_arg(warm);
         const std::optional<Eigen::Vector3d> a = optional_vec3(approach_W, "load.approach");
+        const Placement X = placement_arg(pose, w);
         py::gil_scoped_release release;
-        return solve_frictional_edge(w, e, mu, q, o, st ? &*st : nullptr, a);
+        return solve_frictional_edge(w, X, e, mu, q, o, st ? &*st : nullptr, a);
       },
       py::arg("whisker"), py::arg("edge"), py::arg("mu"), py::arg("previous_contact_W"), py::kw_only(),
       py::arg("options") = py::none(), py::arg("warm") = py::none(), py::arg("approach_W") = py::none(),
+      py::arg("pose") = py::none(),
       "Frictional edge mode (Coulomb coefficient `mu`, with contact history): the contact sticks at "
       "`previous_contact_W` [m] while |edge force| <= mu·F_N, else slips along the edge. mu = 0 is solve_edge.");
+  m.def(
+      "nearest_rest_point",
+      [](const Whisker& w, const py::object& edge, const py::object& pose) {
+        const Edge e = edge_arg(edge);
+        validate(e);
+        const NearestOnWhisker n = nearest_rest_point(w, placement_arg(pose, w), e);
+        py::dict d;
+        d["arc_length"] = n.arc_length;
+        d["on_whisker_W"] = to_array(n.on_whisker_W);
+        d["on_edge_W"] = to_array(n.on_edge_W);
+        d["distance"] = n.distance;
+        return d;
+      },
+      py::arg("whisker"), py::arg("edge"), py::kw_only(), py::arg("pose") = py::none(),
+      "Nearest approach of the rest whisker (at `pose`, default its own) to the edge line: a dict with "
+      "arc_length [m], on_whisker_W and on_edge_W [m] (shape (3,)) and distance [m]. on_edge_W is where a "
+      "frictional contact starts at onset (docs/conventions.md, \"Contact tracking\").");
 }
 
 }  // namespace vibrissa::python

@@ -19,7 +19,9 @@ SI units throughout: m, N, N·m, Pa, rad. World-frame quantities unless the name
 from ._vibrissa import (  # noqa: F401
     BaseJoint,
     Case,
+    ContactState,
     Edge,
+    FrictionState,
     LoadState,
     Pose,
     Scheme,
@@ -31,6 +33,7 @@ from ._vibrissa import (  # noqa: F401
     WhiskerProperties,
     __version__,
     max_threads,
+    nearest_rest_point,
     pose_from_rotation,
     rotation_from_angles,
     solution_to_json,
@@ -54,9 +57,9 @@ from .batch import (  # noqa: F401
 from .case import case_from_dict, load_case, make_whisker, solve_case_file  # noqa: F401
 
 __all__ = [
-    "BaseJoint", "BatchResult", "Case", "Edge", "LoadState", "Pose", "STATUS_NAMES", "Scheme", "Solution",
+    "BaseJoint", "BatchResult", "Case", "ContactState", "Edge", "FrictionState", "LoadState", "Pose", "STATUS_NAMES", "Scheme", "Solution",
     "SolveOptions", "Status", "Whisker", "WhiskerFrameSignals", "WhiskerProperties", "__version__",
-    "case_from_dict", "load_case", "make_whisker", "max_threads", "pose_from_rotation", "rotation_from_angles",
+    "case_from_dict", "load_case", "make_whisker", "max_threads", "nearest_rest_point", "pose_from_rotation", "rotation_from_angles",
     "solution_to_json", "solve_case", "solve_case_file", "solve_dead_load", "solve_edge", "solve_edge_batch",
     "solve_force", "solve_force_batch", "solve_frictional_edge", "solve_frictional_edge_batch", "solve_point",
     "solve_point_batch", "status_from_string", "write_result",

@@ -2,7 +2,9 @@
 
 from ._vibrissa import BaseJoint as BaseJoint
 from ._vibrissa import Case as Case
+from ._vibrissa import ContactState as ContactState
 from ._vibrissa import Edge as Edge
+from ._vibrissa import FrictionState as FrictionState
 from ._vibrissa import LoadState as LoadState
 from ._vibrissa import Pose as Pose
 from ._vibrissa import Scheme as Scheme
@@ -14,6 +16,7 @@ from ._vibrissa import WhiskerFrameSignals as WhiskerFrameSignals
 from ._vibrissa import WhiskerProperties as WhiskerProperties
 from ._vibrissa import __version__ as __version__
 from ._vibrissa import max_threads as max_threads
+from ._vibrissa import nearest_rest_point as nearest_rest_point
 from ._vibrissa import pose_from_rotation as pose_from_rotation
 from ._vibrissa import rotation_from_angles as rotation_from_angles
 from ._vibrissa import solution_to_json as solution_to_json

@@ -279,7 +279,7 @@ SimulationConfig config_from_json(const json& j, const std::filesystem::path& ba
   // --- solver ---
   const json s = j.value("solver", json::object());
   only_keys(s, "solver", {"mode", "mu", "links", "tolerance_m", "max_iterations"});
-  c.mode = contact_mode_from_string(text(s, "solver", "mode", "edge"));
+  c.mode = contact_mode_from_string(text(s, "solver", "mode", "edge"), "solver.mode");
   c.mu = number(s, "solver", "mu", 0.48);
   c.links = integer(s, "solver", "links", 100);
   c.tolerance = number(s, "solver", "tolerance_m", 1e-10);

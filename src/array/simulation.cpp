@@ -10,9 +10,8 @@
 #include <optional>
 
 #include "array_util.hpp"
-#include "vibrissa/array/crossing.hpp"
+#include "vibrissa/contact/tracker.hpp"
 #include "vibrissa/array/error_bound.hpp"
-#include "vibrissa/core/pose.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa::array {
@@ -35,124 +34,48 @@ void put3(std::vector<double>& v, std::size_t i, const Eigen::Vector3d& x) {
   v[3 * i + 2] = x.z();
 }
 
-// The run of one whisker at one head pitch, in time order (warm starts need it).
+// The run of one whisker at one head pitch, in time order (contact history needs it): the rest whisker is
+// placed at each frame and the ContactTracker (contact/tracker.hpp) decides onset, solve, push-past and release.
 class PairRun {
  public:
   PairRun(const SimulationConfig& c, const Prepared& prep, ArrayResult& r, std::size_t p, std::size_t w)
-      : c_(c), prep_(prep), r_(r), p_(p), w_(w), spec_(c.morphology.whiskers[w]), rest_(prep.rest[w]) {}
+      : c_(c), prep_(prep), r_(r), p_(p), w_(w), spec_(c.morphology.whiskers[w]), rest_(prep.rest[w]),
+        tracker_(rest_, tracker_options(c)) {}
+
+  static TrackerOptions tracker_options(const SimulationConfig& c) {
+    TrackerOptions o;
+    o.mode = c.mode;
+    o.mu = c.mu;
+    o.solve.tolerance = c.tolerance;
+    o.solve.max_iterations = c.max_iterations;
+    o.solve.compute_shape = false;
+    return o;
+  }
 
   void run() {
-    const auto& nodes_B = rest_.rest_nodes_B();
-    const auto& arc = rest_.node_arc_lengths();
-    const std::size_t n = nodes_B.size();
-    std::vector<Eigen::Vector3d> prev(n), now(n);
+    const bool render_run = p_ == static_cast<std::size_t>(c_.render_pitch);
     for (std::size_t f = 0; f < r_.n_frames; ++f) {
       const HeadPose& H = prep_.head[p_][f];
-      const Eigen::Matrix3d R_WB = H.R_WH * prep_.R_HB[w_][f];
-      const Eigen::Vector3d p_W_base = H.point_to_world(spec_.p_H_base);
-      for (std::size_t i = 0; i < n; ++i) now[i] = p_W_base + R_WB * nodes_B[i];
+      const Placement X(H.R_WH * prep_.R_HB[w_][f], H.point_to_world(spec_.p_H_base));
       const std::size_t k = r_.index(p_, w_, f);
-      put3(r_.base_W, k, p_W_base);
-      if (f > 0) step(f, prev, now, arc, R_WB, p_W_base);
-      r_.state[k] = static_cast<std::int8_t>(state_);
-      if (p_ == static_cast<std::size_t>(c_.render_pitch) && prep_.render_index[f] >= 0) render(f, now);
-      std::swap(prev, now);
+      put3(r_.base_W, k, X.p_W_base);
+      const TrackedFrame& fr = tracker_.step(X, prep_.edges[p_][f]);
+      r_.state[k] = static_cast<std::int8_t>(fr.state);
+      if (fr.solved) {
+        r_.solver_status[k] = static_cast<std::int8_t>(fr.solution.status);
+        r_.edge[k] = static_cast<std::int16_t>(fr.edge);
+      }
+      if (fr.state == ContactState::contact) record(k, fr);
+      if (render_run && prep_.render_index[f] >= 0) render(f, X, fr);
     }
   }
 
-  std::size_t solves = 0, failed = 0;
+  [[nodiscard]] std::size_t solves() const { return tracker_.solves(); }
+  [[nodiscard]] std::size_t failed() const { return tracker_.failed_solves(); }
 
  private:
-  // Earliest crossing among the edges; `only` restricts to one edge, `skip` excludes one.
-  std::optional<std::pair<int, Crossing>> earliest_crossing(std::size_t f, const std::vector<Eigen::Vector3d>& prev,
-                                                             const std::vector<Eigen::Vector3d>& now,
-                                                             const std::vector<double>& arc, int only, int skip,
-                                                             bool within_extent) const {
-    const auto& ep = prep_.edges[p_][f - 1];
-    const auto& en = prep_.edges[p_][f];
-    std::optional<std::pair<int, Crossing>> best;
-    for (std::size_t e = 0; e < en.size(); ++e) {
-      const int ei = static_cast<int>(e);
-      if ((only >= 0 && ei != only) || ei == skip) continue;
-      if (!may_reach(prev.front(), ep[e]) && !may_reach(now.front(), en[e])) continue;
-      if (auto c = find_crossing(prev, now, arc, ep[e], en[e], within_extent); c && (!best || c->tau < best->second.tau))
-        best = std::make_pair(ei, *c);
-    }
-    return best;
-  }
-
-  // Cheap rejection: an edge's line farther from the base than the whisker is long cannot be crossed.
-  [[nodiscard]] bool may_reach(const Eigen::Vector3d& base_W, const EdgeSegment& e) const {
-    const Eigen::Vector3d r = base_W - e.p0;
-    const double dist = (r - r.dot(e.direction) * e.direction).norm();
-    return dist <= 1.05 * spec_.arc_length;
-  }
-
-  void begin_contact(std::size_t f, int edge, const Crossing& c) {
-    state_ = ContactState::contact;
-    edge_ = edge;
-    approach_E_ = c.approach_E;
-    hint_ = c.arc_length;
-    have_warm_ = false;
-    onset_pending_ = true;
-    const EdgeSegment& e = prep_.edges[p_][f][static_cast<std::size_t>(edge)];
-    last_contact_W_ = e.p0 + c.edge_coordinate * e.direction;
-  }
-
-  void step(std::size_t f, const std::vector<Eigen::Vector3d>& prev, const std::vector<Eigen::Vector3d>& now,
-            const std::vector<double>& arc, const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_W_base) {
-    if (state_ == ContactState::free) {
-      if (auto hit = earliest_crossing(f, prev, now, arc, -1, -1, true)) begin_contact(f, hit->first, hit->second);
-    } else if (state_ == ContactState::pushed_past) {
-      // Retraction: the rest whisker crosses back over the line it was pushed past (its extent aside).
-      if (earliest_crossing(f, prev, now, arc, edge_, -1, false)) {
-        state_ = ContactState::free;
-        edge_ = -1;
-      } else if (auto hit = earliest_crossing(f, prev, now, arc, -1, edge_, true)) {
-        begin_contact(f, hit->first, hit->second);
-      }
-    }
-    if (state_ == ContactState::contact) solve(f, R_WB, p_W_base);
-  }
-
-  void solve(std::size_t f, const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_W_base) {
-    const std::size_t k = r_.index(p_, w_, f);
-    const EdgeSegment& e = prep_.edges[p_][f][static_cast<std::size_t>(edge_)];
-    const Whisker placed = rest_.placed(pose_from_rotation(R_WB, p_W_base));
-    SolveOptions options;
-    options.tolerance = c_.tolerance;
-    options.max_iterations = c_.max_iterations;
-    const bool rendering = p_ == static_cast<std::size_t>(c_.render_pitch) && prep_.render_index[f] >= 0;
-    options.compute_shape = rendering;
-    const Eigen::Vector3d approach_W = edge_vector_to_world(e, approach_E_);
-    const LoadState* warm = have_warm_ ? &warm_ : nullptr;
-    const Solution s = c_.mode == ContactMode::edge
-                           ? solve_edge(placed, e.line(), hint_, options, warm, approach_W)
-                           : solve_frictional_edge(placed, e.line(), c_.mu, last_contact_W_, options, warm, approach_W);
-    ++solves;
-    r_.solver_status[k] = static_cast<std::int8_t>(s.status);
-    r_.edge[k] = static_cast<std::int16_t>(edge_);
-    if (s.status == Status::slipped_off) {
-      state_ = ContactState::pushed_past;  // Fig. 4a green: the whisker slipped off its tip past the edge
-      return;
-    }
-    if (s.status == Status::no_contact) {
-      state_ = ContactState::free;  // released: the edge would have to pull
-      edge_ = -1;
-      return;
-    }
-    if (s.status == Status::not_converged) {
-      // No frictionless equilibrium near the previous one: past a fold of the edge-mode solution the whisker
-      // slides along the edge and snaps free; its rest shape is beyond the edge, so it has pushed past.
-      ++failed;
-      state_ = ContactState::pushed_past;
-      return;
-    }
-    const double lambda = (s.contact_point - e.p0).dot(e.direction);
-    if (!e.contains(lambda)) {
-      state_ = ContactState::pushed_past;  // slipped off the end of a finite edge
-      return;
-    }
+  void record(std::size_t k, const TrackedFrame& fr) {
+    const Solution& s = fr.solution;
     put3(r_.contact_W, k, s.contact_point);
     put3(r_.force_W, k, s.force);
     put3(r_.moment_W, k, s.moment);
@@ -165,34 +88,29 @@ class PairRun {
     r_.MD[k] = s.whisker_frame.MD;
     r_.normal_force[k] = s.normal_force.value_or(0.0);
     r_.edge_force[k] = s.edge_force.value_or(0.0);
-    r_.z_edge[k] = lambda;
-    if (onset_pending_) {
-      z_onset_ = lambda;
-      onset_pending_ = false;
-    }
-    warm_ = s.state;
-    have_warm_ = true;
-    hint_ = s.arc_length;
-    last_contact_W_ = s.contact_point;
+    r_.z_edge[k] = fr.edge_coordinate;
     // eq. (7): error bound on the contact position along the edge for friction coefficient mu.
-    r_.z_error[k] = contact_error_bound(lambda - z_onset_, c_.mu, r_.normal_force[k], s.arc_length, spec_.arc_length,
-                                       spec_.base_radius, spec_.taper_ratio, spec_.youngs_modulus);
-    if (rendering && !s.shape.empty()) deflected_ = s.shape;
+    r_.z_error[k] = contact_error_bound(fr.edge_coordinate - fr.onset_edge_coordinate, c_.mu, r_.normal_force[k],
+                                       s.arc_length, spec_.arc_length, spec_.base_radius, spec_.taper_ratio,
+                                       spec_.youngs_modulus);
   }
 
-  void render(std::size_t f, const std::vector<Eigen::Vector3d>& now) {
+  // Rest and deflected shapes of a rendered frame (the deflected shape recomputed from the solved state).
+  void render(std::size_t f, const Placement& X, const TrackedFrame& fr) {
     const std::size_t ri = static_cast<std::size_t>(prep_.render_index[f]);
-    const std::size_t n = now.size();
-    const bool bent = state_ == ContactState::contact && deflected_.size() == n;
+    const auto& nodes_B = rest_.rest_nodes_B();
+    const std::size_t n = nodes_B.size();
+    std::vector<Eigen::Vector3d> bent;
+    if (fr.state == ContactState::contact) deflected_shape(rest_, X, fr.solution.state, bent);
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t at = ((ri * r_.n_whiskers + w_) * n + i) * 3;
-      const Eigen::Vector3d& d = bent ? deflected_[i] : now[i];
+      const Eigen::Vector3d rest = X.to_world(nodes_B[i]);
+      const Eigen::Vector3d& d = bent.size() == n ? bent[i] : rest;
       for (int a = 0; a < 3; ++a) {
-        r_.rest_shapes[at + static_cast<std::size_t>(a)] = static_cast<float>(now[i][a]);
+        r_.rest_shapes[at + static_cast<std::size_t>(a)] = static_cast<float>(rest[a]);
         r_.deflected_shapes[at + static_cast<std::size_t>(a)] = static_cast<float>(d[a]);
       }
     }
-    deflected_.clear();
   }
 
   const SimulationConfig& c_;
@@ -201,17 +119,7 @@ class PairRun {
   std::size_t p_, w_;
   const WhiskerSpec& spec_;
   const Whisker& rest_;
-
-  ContactState state_ = ContactState::free;
-  int edge_ = -1;
-  Eigen::Vector2d approach_E_ = Eigen::Vector2d::Zero();
-  double hint_ = 0.0;
-  LoadState warm_;
-  bool have_warm_ = false;
-  bool onset_pending_ = false;
-  double z_onset_ = 0.0;
-  Eigen::Vector3d last_contact_W_ = Eigen::Vector3d::Zero();
-  std::vector<Eigen::Vector3d> deflected_;
+  ContactTracker tracker_;
 };
 
 Prepared prepare(const SimulationConfig& c, ArrayResult& r) {
@@ -247,23 +155,6 @@ Prepared prepare(const SimulationConfig& c, ArrayResult& r) {
 
 }  // namespace
 
-std::string_view to_string(ContactState s) {
-  switch (s) {
-    case ContactState::free: return "free";
-    case ContactState::contact: return "contact";
-    case ContactState::pushed_past: return "pushed_past";
-  }
-  return "free";
-}
-
-std::string_view to_string(ContactMode m) { return m == ContactMode::edge ? "edge" : "frictional_edge"; }
-
-ContactMode contact_mode_from_string(std::string_view name, const char* field) {
-  if (name == "edge") return ContactMode::edge;
-  if (name == "frictional_edge") return ContactMode::frictional_edge;
-  fail(std::string(field) + " must be 'edge' or 'frictional_edge', got '" + std::string(name) + "'");
-}
-
 std::vector<double> uniform_times(double start, double end, int frames) {
   if (!std::isfinite(start) || !std::isfinite(end) || !(end > start))
     fail("time: end_s must be later than start_s, got start " + fmt(start) + " s, end " + fmt(end) + " s");
@@ -294,6 +185,8 @@ void validate(const SimulationConfig& c) {
     if (!std::isfinite(c.times[i])) fail("time[" + std::to_string(i) + "] must be finite");
     if (i > 0 && !(c.times[i] > c.times[i - 1])) fail("time must increase strictly at frame " + std::to_string(i));
   }
+  if (c.mode == ContactMode::contact_point)
+    fail("solver.mode must be 'edge' or 'frictional_edge' (an array has no tracked contact points), got 'contact_point'");
   if (!(std::isfinite(c.mu) && c.mu >= 0.0)) fail("solver.mu must be finite and >= 0, got " + fmt(c.mu));
   if (c.links < 2) fail("solver.links must be >= 2, got " + std::to_string(c.links));
   if (!(std::isfinite(c.tolerance) && c.tolerance > 0.0))
@@ -357,8 +250,8 @@ ArrayResult simulate_array(const SimulationConfig& c, const RunControl& control)
       const std::size_t wi = static_cast<std::size_t>(pair) % r.n_whiskers;
       PairRun run(c, prep, r, pi, wi);
       run.run();
-      solves += run.solves;
-      failed += run.failed;
+      solves += run.solves();
+      failed += run.failed();
       counter.advance(r.n_frames);
     } catch (...) {
       const std::lock_guard<std::mutex> lock(error_mutex);

@@ -4,7 +4,6 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/kinematics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/head.cpp
   ${CMAKE_CURRENT_LIST_DIR}/objects.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/crossing.cpp
   ${CMAKE_CURRENT_LIST_DIR}/error_bound.cpp
   ${CMAKE_CURRENT_LIST_DIR}/simulation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/config.cpp

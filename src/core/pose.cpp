@@ -40,6 +40,12 @@ Pose pose_from_rotation(const Eigen::Matrix3d& R, const Eigen::Vector3d& p_W_bas
   return pose;
 }
 
+Placement::Placement(const Pose& pose) {
+  validate(pose);
+  R_WB = rotation_from_angles(pose.theta, pose.phi, pose.zeta);
+  p_W_base = pose.p_W_base;
+}
+
 void require_finite(double v, const char* field) {
   if (!std::isfinite(v)) {
     std::ostringstream os;

@@ -77,14 +77,7 @@ Whisker Whisker::from_points(const std::vector<Eigen::Vector3d>& points, const W
   for (auto& p : nodes) p = R.transpose() * (p - base);
   Whisker w;
   w.build(std::move(nodes), props);
-  if (pose) {
-    validate(*pose);
-    w.R_WB_ = rotation_from_angles(pose->theta, pose->phi, pose->zeta);
-    w.p_W_base_ = pose->p_W_base;
-  } else {
-    w.R_WB_ = R;
-    w.p_W_base_ = base;
-  }
+  w.placement_ = pose ? Placement(*pose) : Placement(R, base);
   return w;
 }
 
@@ -101,16 +94,7 @@ Whisker Whisker::from_cubic(double length, double A, double B, const WhiskerProp
   require_finite(B, "whisker.cubic[1]");
   Whisker w;
   w.build(planar_polynomial_nodes(length, A, B, props.links), props);
-  w.R_WB_ = rotation_from_angles(pose.theta, pose.phi, pose.zeta);
-  w.p_W_base_ = pose.p_W_base;
-  return w;
-}
-
-Whisker Whisker::placed(const Pose& pose) const {
-  validate(pose);
-  Whisker w = *this;
-  w.R_WB_ = rotation_from_angles(pose.theta, pose.phi, pose.zeta);
-  w.p_W_base_ = pose.p_W_base;
+  w.placement_ = Placement(pose);
   return w;
 }
 

@@ -218,7 +218,10 @@ Solution solve_case(const Case& c) {
 json solution_to_json(const Solution& s) {
   json j;
   j["status"] = std::string(to_string(s.status));
-  j["message"] = s.message;
+  j["message"] = std::string(s.message);
+  j["contact_state"] = std::string(to_string(s.contact_state));
+  j["friction"] = std::string(to_string(s.friction));
+  j["fold"] = s.fold;
   j["force_magnitude"] = s.force_magnitude;
   j["arc_length"] = s.arc_length;
   j["angle"] = s.angle;

@@ -181,7 +181,7 @@ nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
     std::map<std::string, std::size_t> counts;
     for (const auto& f : r.frames)
       if (f.mode(m).solved) ++counts[std::string(to_string(f.mode(m).status))];
-    if (!counts.empty()) status[to_string(m)] = counts;
+    if (!counts.empty()) status[std::string(to_string(m))] = counts;
   }
   j["status_counts"] = status;
   j["whisker_length_m"] = a.whisker_length;

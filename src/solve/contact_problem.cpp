@@ -1,5 +1,7 @@
 #include "contact_problem.hpp"
 
+#include "vibrissa/solve/solvers.hpp"
+
 #include <cmath>
 #include <vector>
 
@@ -30,9 +32,22 @@ void normal_basis(const Eigen::Vector3d& d, Eigen::Vector3d& e1, Eigen::Vector3d
   e2 = d.cross(e1);
 }
 
-void fill_solution(const Whisker& w, const LoadState& state, const SolveOptions& options,
+namespace {
+/// Per-thread scratch of fill_solution: joint rotations and deflected nodes, grown once per thread.
+struct Workspace {
+  std::vector<Eigen::Vector3d> omega, nodes_B;
+};
+Workspace& workspace() {
+  thread_local Workspace ws;
+  return ws;
+}
+}  // namespace
+
+void fill_solution(const Whisker& w, const Placement& X, const LoadState& state, const SolveOptions& options,
                    const std::optional<Eigen::Vector3d>& edge_direction_W, Solution& out) {
-  std::vector<Eigen::Vector3d> omega(static_cast<std::size_t>(w.links()));
+  Workspace& ws = workspace();
+  auto& omega = ws.omega;
+  omega.resize(static_cast<std::size_t>(w.links()));
   const V3<double> F_L(state.force_x, state.force_y, state.force_z);
   const auto c = deflect<double>(w, F_L, V3<double>(0, 0, 0), state.arc_length, omega.data());
   const Eigen::Vector3d p_B = to_eigen(c.p_contact_B), F_B = to_eigen(c.force_B);
@@ -41,9 +56,9 @@ void fill_solution(const Whisker& w, const LoadState& state, const SolveOptions&
   out.arc_length = state.arc_length;
   out.force_magnitude = F_B.norm();
   out.angle = std::atan2(state.force_z, state.force_y);
-  out.contact_point = w.to_world(p_B);
-  out.force = w.R_WB() * F_B;
-  out.moment = w.R_WB() * M_B;
+  out.contact_point = X.to_world(p_B);
+  out.force = X.R_WB * F_B;
+  out.moment = X.R_WB * M_B;
   auto& wf = out.whisker_frame;
   wf.force = F_B;
   wf.moment = M_B;
@@ -58,21 +73,47 @@ void fill_solution(const Whisker& w, const LoadState& state, const SolveOptions&
   }
   out.shape.clear();
   if (options.compute_shape) {
-    std::vector<Eigen::Vector3d> nodes;
-    deflected_nodes_B(w, omega.data(), nodes);
-    out.shape.reserve(nodes.size());
-    for (const auto& p : nodes) out.shape.push_back(w.to_world(p));
+    deflected_nodes_B(w, omega.data(), ws.nodes_B);
+    out.shape.reserve(ws.nodes_B.size());
+    for (const auto& p : ws.nodes_B) out.shape.push_back(X.to_world(p));
   }
 }
 
-Solution unloaded_solution(const Whisker& w, Status status, std::string message, const SolveOptions& options) {
+}  // namespace vibrissa::detail
+
+namespace vibrissa {
+void deflected_shape(const Whisker& w, const Placement& X, const LoadState& state, std::vector<Eigen::Vector3d>& nodes_W) {
+  detail::Workspace& ws = detail::workspace();
+  ws.omega.resize(static_cast<std::size_t>(w.links()));
+  const V3<double> F_L(state.force_x, state.force_y, state.force_z);
+  deflect<double>(w, F_L, V3<double>(0, 0, 0), state.arc_length, ws.omega.data());
+  deflected_nodes_B(w, ws.omega.data(), ws.nodes_B);
+  nodes_W.resize(ws.nodes_B.size());
+  for (std::size_t i = 0; i < ws.nodes_B.size(); ++i) nodes_W[i] = X.to_world(ws.nodes_B[i]);
+}
+}  // namespace vibrissa
+
+namespace vibrissa::detail {
+
+void set_status(Solution& out, Status status, std::string_view message) {
+  out.status = status;
+  out.message = message;
+  switch (status) {
+    case Status::converged: out.contact_state = ContactState::contact; break;
+    case Status::slipped_off: out.contact_state = ContactState::pushed_past; break;
+    case Status::no_contact:
+    case Status::not_converged: out.contact_state = ContactState::free; break;
+  }
+}
+
+Solution unloaded_solution(const Whisker& w, const Placement& X, Status status, std::string_view message,
+                           const SolveOptions& options) {
   Solution out;
   LoadState rest;
   rest.arc_length = 0.0;
-  fill_solution(w, rest, options, std::nullopt, out);
-  out.contact_point = w.p_W_base();
-  out.status = status;
-  out.message = std::move(message);
+  fill_solution(w, X, rest, options, std::nullopt, out);
+  out.contact_point = X.p_W_base;
+  set_status(out, status, message);
   return out;
 }
 

@@ -39,12 +39,17 @@ ContactKinematics<S> contact_at(const Whisker& w, const Scales& sc, const std::a
 void normal_basis(const Eigen::Vector3d& d, Eigen::Vector3d& e1, Eigen::Vector3d& e2);
 
 /// Fills every output of a Solution from the solved state (world and whisker-frame signals, shape).
-/// `edge_direction_W` (unit) adds normal_force / edge_force.
-void fill_solution(const Whisker& w, const LoadState& state, const SolveOptions& options,
+/// `edge_direction_W` (unit) adds normal_force / edge_force. Scratch storage is per thread (allocated once).
+void fill_solution(const Whisker& w, const Placement& X_WB, const LoadState& state, const SolveOptions& options,
                    const std::optional<Eigen::Vector3d>& edge_direction_W, Solution& out);
 
+/// Sets the status and the contact state that goes with it (converged: contact; slipped_off: pushed_past;
+/// no_contact and not_converged: free).
+void set_status(Solution& out, Status status, std::string_view message);
+
 /// A Solution for "no load": rest shape, zero force, with status and message.
-Solution unloaded_solution(const Whisker& w, Status status, std::string message, const SolveOptions& options);
+Solution unloaded_solution(const Whisker& w, const Placement& X_WB, Status status, std::string_view message,
+                           const SolveOptions& options);
 
 /// Arc length at which the rest whisker is first as far from the base as `distance` (or L).
 double arc_length_at_distance(const Whisker& w, double distance);

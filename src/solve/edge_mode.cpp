@@ -17,31 +17,33 @@ void validate(const Edge& edge) {
 namespace detail {
 
 /// Checks that a converged edge contact pushes the whisker; rewrites the status if it does not.
-void check_contact_side(const Whisker& w, const std::optional<Eigen::Vector3d>& approach_W, Solution& out) {
+void check_contact_side(const Whisker& w, const Placement& X, const std::optional<Eigen::Vector3d>& approach_W,
+                        Solution& out) {
   if (out.status != Status::converged || out.force_magnitude == 0.0) return;
-  const Eigen::Vector3d displacement = out.contact_point - w.rest_point_W(out.arc_length);
+  const Eigen::Vector3d displacement = out.contact_point - X.to_world(w.rest_point_B(out.arc_length));
   if (out.force.dot(displacement) < -1e-12 * out.force_magnitude * w.length()) {
-    out.status = Status::no_contact;
-    out.message = "the edge would have to pull the whisker toward it: not pressed against the edge";
+    set_status(out, Status::no_contact, "the edge would have to pull the whisker toward it: not pressed against the edge");
+    out.friction = FrictionState::none;
   } else if (approach_W && out.force.dot(*approach_W) > 0.0) {
-    out.status = Status::no_contact;
-    out.message = "the whisker is on the far side of the edge for the given approach direction";
+    set_status(out, Status::no_contact, "the whisker is on the far side of the edge for the given approach direction");
+    out.friction = FrictionState::none;
   }
 }
 
 }  // namespace detail
 
-Solution solve_edge(const Whisker& w, const Edge& edge, std::optional<double> hint, const SolveOptions& options,
-                    const LoadState* warm, const std::optional<Eigen::Vector3d>& approach_W) {
+Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std::optional<double> hint,
+                    const SolveOptions& options, const LoadState* warm,
+                    const std::optional<Eigen::Vector3d>& approach_W) {
   validate(edge);
   if (hint) require_finite(*hint, "load.arc_length_hint");
   if (approach_W) require_finite(*approach_W, "load.approach");
   const detail::Scales sc(w);
-  const detail::EdgeGeometryB g = detail::edge_in_body(w, edge);
+  const detail::EdgeGeometryB g = detail::edge_in_body(X, edge);
   bool within_reach = false;
   const double s_near = detail::nearest_rest_arc_length(w, g, within_reach);
   if (!within_reach)
-    return detail::unloaded_solution(w, Status::no_contact, "the edge is out of the whisker's reach", options);
+    return detail::unloaded_solution(w, X, Status::no_contact, "the edge is out of the whisker's reach", options);
 
   Eigen::Vector3d u0;
   if (warm)
@@ -58,22 +60,23 @@ Solution solve_edge(const Whisker& w, const Edge& edge, std::optional<double> hi
   if (a.status == Status::not_converged) a = detail::continue_from_touch(w, sc, g, s_near, options, a);
   if (a.status == Status::slipped_off) {  // released: the whisker is free again (rest shape, no force)
     Solution off = detail::unloaded_solution(
-        w, Status::slipped_off,
+        w, X, Status::slipped_off,
         a.folded ? "the contact equilibrium ends in a fold: the whisker snaps past the edge (push-past)"
                  : "equilibrium would need contact beyond the tip: the whisker slips off",
         options);
+    off.fold = a.folded;
     off.iterations = a.lm.iterations;
     off.arc_length = std::min(a.lm.u[2] * sc.length, w.length());
     return off;
   }
   Solution out;
-  detail::fill_solution(w, detail::state_from_unknowns(a.lm.u, sc), options, edge.direction.normalized(), out);
-  out.status = a.status;
+  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge.direction.normalized(), out);
+  detail::set_status(out, a.status,
+                     a.status == Status::converged ? "frictionless contact on the edge"
+                                                   : "no equilibrium on the edge within the iteration limit");
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * sc.length;
-  out.message = a.status == Status::converged ? "frictionless contact on the edge"
-                                              : "no equilibrium on the edge within the iteration limit";
-  detail::check_contact_side(w, approach_W, out);
+  detail::check_contact_side(w, X, approach_W, out);
   if (out.status == Status::converged && options.find_other_roots) {
     const double s_star = a.lm.u[2];
     for (double s_try : {0.25, 0.5, 0.75, 1.0}) {

@@ -2,10 +2,10 @@
 
 namespace vibrissa::detail {
 
-EdgeGeometryB edge_in_body(const Whisker& w, const Edge& edge) {
+EdgeGeometryB edge_in_body(const Placement& X, const Edge& edge) {
   EdgeGeometryB g;
-  g.point = w.to_body(edge.point);
-  g.direction = (w.R_WB().transpose() * edge.direction).normalized();
+  g.point = X.to_body(edge.point);
+  g.direction = (X.R_WB.transpose() * edge.direction).normalized();
   normal_basis(g.direction, g.e1, g.e2);
   return g;
 }

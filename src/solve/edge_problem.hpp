@@ -16,7 +16,7 @@ struct EdgeGeometryB {
   Eigen::Vector3d e1, e2;     ///< basis of the plane normal to the line
 };
 
-EdgeGeometryB edge_in_body(const Whisker& w, const Edge& edge);
+EdgeGeometryB edge_in_body(const Placement& X_WB, const Edge& edge);
 
 struct EdgeAttempt {
   LMResult lm;
@@ -36,7 +36,8 @@ EdgeAttempt continue_from_touch(const Whisker& w, const Scales& sc, const EdgeGe
 
 /// Checks that a converged edge contact pushes the whisker (and opposes `approach_W` if given); rewrites
 /// the status to no_contact if it does not.
-void check_contact_side(const Whisker& w, const std::optional<Eigen::Vector3d>& approach_W, Solution& out);
+void check_contact_side(const Whisker& w, const Placement& X_WB, const std::optional<Eigen::Vector3d>& approach_W,
+                        Solution& out);
 
 /// Arc length of the rest whisker's point nearest the line, and whether the line is within reach.
 double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g, bool& within_reach);

@@ -16,7 +16,8 @@ void check_arc_length(const Whisker& w, double s) {
 }
 }  // namespace
 
-Solution solve_force(const Whisker& w, double force, double arc_length, double angle, const SolveOptions& options) {
+Solution solve_force(const Whisker& w, const Placement& X, double force, double arc_length, double angle,
+                     const SolveOptions& options) {
   require_finite(force, "load.force");
   if (force < 0.0) throw std::invalid_argument("load.force must be >= 0 (use angle to set direction), got " +
                                                std::to_string(force));
@@ -27,18 +28,17 @@ Solution solve_force(const Whisker& w, double force, double arc_length, double a
   state.force_z = force * std::sin(angle);
   state.arc_length = arc_length;
   Solution out;
-  detail::fill_solution(w, state, options, std::nullopt, out);
-  out.status = Status::converged;
-  out.message = "explicit force-mode evaluation";
+  detail::fill_solution(w, X, state, options, std::nullopt, out);
+  detail::set_status(out, Status::converged, "explicit force-mode evaluation");
   return out;
 }
 
-Solution solve_dead_load(const Whisker& w, const Eigen::Vector3d& force_W, double arc_length,
+Solution solve_dead_load(const Whisker& w, const Placement& X, const Eigen::Vector3d& force_W, double arc_length,
                          const SolveOptions& options, const LoadState* warm) {
   require_finite(force_W, "load.force");
   check_arc_length(w, arc_length);
   const detail::Scales sc(w);
-  const Eigen::Vector3d target_B = w.R_WB().transpose() * force_W / sc.force;
+  const Eigen::Vector3d target_B = X.R_WB.transpose() * force_W / sc.force;
   int k;
   double h;
   w.locate(arc_length, k, h);
@@ -83,12 +83,12 @@ Solution solve_dead_load(const Whisker& w, const Eigen::Vector3d& force_W, doubl
   state.force_z = lm.u[2] * sc.force;
   state.arc_length = arc_length;
   Solution out;
-  detail::fill_solution(w, state, options, std::nullopt, out);
+  detail::fill_solution(w, X, state, options, std::nullopt, out);
   out.iterations = lm.iterations;
   out.residual = lm.residual * sc.force;
-  out.status = lm.converged ? Status::converged : Status::not_converged;
-  out.message = lm.converged ? "dead load: follower equivalent found (residual in N)"
-                             : "dead load: no equilibrium found within the iteration limit (residual in N)";
+  detail::set_status(out, lm.converged ? Status::converged : Status::not_converged,
+                     lm.converged ? "dead load: follower equivalent found (residual in N)"
+                                  : "dead load: no equilibrium found within the iteration limit (residual in N)");
   return out;
 }
 

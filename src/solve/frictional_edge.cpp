@@ -12,9 +12,9 @@
 
 namespace vibrissa {
 
-Solution solve_frictional_edge(const Whisker& w, const Edge& edge, double mu, const Eigen::Vector3d& previous_contact_W,
-                               const SolveOptions& options, const LoadState* warm,
-                               const std::optional<Eigen::Vector3d>& approach_W) {
+Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge& edge, double mu,
+                               const Eigen::Vector3d& previous_contact_W, const SolveOptions& options,
+                               const LoadState* warm, const std::optional<Eigen::Vector3d>& approach_W) {
   validate(edge);
   require_finite(mu, "friction_coefficient");
   if (mu < 0.0) throw std::invalid_argument("friction_coefficient must be >= 0, got " + std::to_string(mu));
@@ -25,37 +25,39 @@ Solution solve_frictional_edge(const Whisker& w, const Edge& edge, double mu, co
   SolveOptions inner = options;
   inner.compute_shape = false;
   inner.find_other_roots = false;
-  Solution free = solve_edge(w, edge, std::nullopt, inner, warm, approach_W);
-  auto finish = [&](Solution s, const std::string& message) {
-    LoadState st = s.state;
+  const Solution free = solve_edge(w, X, edge, std::nullopt, inner, warm, approach_W);
+  // The reported Solution: outputs recomputed from the final state (with the caller's options), typed outcome.
+  auto finish = [&](const Solution& s, FrictionState friction, std::string_view message) {
     Solution out;
-    detail::fill_solution(w, st, options, d, out);
-    out.status = s.status;
-    out.message = message;
+    detail::fill_solution(w, X, s.state, options, d, out);
+    detail::set_status(out, s.status, message);
+    out.fold = s.fold;
+    out.friction = s.status == Status::converged ? friction : FrictionState::none;
     out.iterations = s.iterations;
     out.residual = s.residual;
     return out;
   };
-  if (free.status != Status::converged) return finish(free, free.message);
-  if (mu == 0.0) return finish(free, "frictionless: slipping on the edge");
+  if (free.status != Status::converged) return finish(free, FrictionState::none, free.message);
+  if (mu == 0.0) return finish(free, FrictionState::slip, "frictionless: slipping on the edge");
 
   // 2. Stick at the previous contact.
   const LoadState* stick_start = warm ? warm : &free.state;
-  Solution stick = solve_point(w, q_prev, std::nullopt, inner, stick_start, d);
+  Solution stick = solve_point(w, X, q_prev, std::nullopt, inner, stick_start, d);
   if (stick.status == Status::converged) {
-    detail::check_contact_side(w, approach_W, stick);
+    detail::check_contact_side(w, X, approach_W, stick);
     if (stick.status == Status::converged && std::abs(*stick.edge_force) <= mu * *stick.normal_force * (1.0 + 1e-9)) {
       stick.iterations += free.iterations;
-      return finish(stick, "stick: the contact holds its previous point on the edge");
+      return finish(stick, FrictionState::stick, "stick: the contact holds its previous point on the edge");
     }
   }
 
   // 3. Slip toward the frictionless point until the friction cone is met.
   const double travel = (free.contact_point - q_prev).dot(d);
-  if (travel == 0.0) return finish(free, "slip: previous contact coincides with the frictionless point");
+  if (travel == 0.0)
+    return finish(free, FrictionState::slip, "slip: previous contact coincides with the frictionless point");
   const double sigma = travel > 0.0 ? 1.0 : -1.0;
   const detail::Scales sc(w);
-  const detail::EdgeGeometryB g = detail::edge_in_body(w, edge);
+  const detail::EdgeGeometryB g = detail::edge_in_body(X, edge);
   detail::EdgeAttempt best;
   for (const LoadState* start : {stick.status == Status::converged ? &stick.state : &free.state, &free.state}) {
     best = detail::attempt_edge(w, sc, g, sigma * mu, detail::unknowns_from_state(*start, sc), inner);
@@ -66,12 +68,13 @@ Solution solve_frictional_edge(const Whisker& w, const Edge& edge, double mu, co
   slip.status = best.status;
   slip.iterations = best.lm.iterations + free.iterations + stick.iterations;
   slip.residual = best.lm.residual * sc.length;
-  Solution out = finish(slip, best.status == Status::converged
-                                  ? "slip: contact moved along the edge with |F_edge| = mu F_N"
-                                  : (best.status == Status::slipped_off
-                                         ? "slip: equilibrium would need contact beyond the tip"
-                                         : "slip: no frictional equilibrium within the iteration limit"));
-  detail::check_contact_side(w, approach_W, out);
+  Solution out = finish(slip, FrictionState::slip,
+                        best.status == Status::converged
+                            ? "slip: contact moved along the edge with |F_edge| = mu F_N"
+                            : (best.status == Status::slipped_off
+                                   ? "slip: equilibrium would need contact beyond the tip"
+                                   : "slip: no frictional equilibrium within the iteration limit"));
+  detail::check_contact_side(w, X, approach_W, out);
   return out;
 }
 

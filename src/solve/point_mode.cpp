@@ -36,7 +36,7 @@ PointAttempt attempt_point(const Whisker& w, const detail::Scales& sc, const Eig
 
 }  // namespace
 
-Solution solve_point(const Whisker& w, const Eigen::Vector3d& point_W, std::optional<double> hint,
+Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d& point_W, std::optional<double> hint,
                      const SolveOptions& options, const LoadState* warm,
                      const std::optional<Eigen::Vector3d>& edge_direction_W) {
   require_finite(point_W, "load.point");
@@ -46,14 +46,11 @@ Solution solve_point(const Whisker& w, const Eigen::Vector3d& point_W, std::opti
     if (!(edge_direction_W->norm() > 0.0)) throw std::invalid_argument("load.edge_direction must be non-zero");
   }
   const detail::Scales sc(w);
-  const Eigen::Vector3d target_B = w.to_body(point_W);
+  const Eigen::Vector3d target_B = X.to_body(point_W);
   const double distance = target_B.norm();
   if (distance > w.length())
-    return detail::unloaded_solution(w, Status::no_contact,
-                                     "target point is " + std::to_string(distance) +
-                                         " m from the base, beyond the whisker's length " +
-                                         std::to_string(w.length()) + " m",
-                                     options);
+    return detail::unloaded_solution(w, X, Status::no_contact,
+                                     "the target point lies beyond the whisker's length from the base", options);
 
   Eigen::Vector3d u0;
   if (warm) {
@@ -80,14 +77,15 @@ Solution solve_point(const Whisker& w, const Eigen::Vector3d& point_W, std::opti
   }
 
   Solution out;
-  detail::fill_solution(w, detail::state_from_unknowns(a.lm.u, sc), options, edge_direction_W, out);
-  out.status = a.status;
+  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge_direction_W, out);
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * sc.length;
   switch (a.status) {
-    case Status::converged: out.message = "contact point reached"; break;
-    case Status::slipped_off: out.message = "reaching the point would need contact beyond the tip"; break;
-    default: out.message = "no equilibrium through the point within the iteration limit"; break;
+    case Status::converged: detail::set_status(out, a.status, "contact point reached"); break;
+    case Status::slipped_off:
+      detail::set_status(out, a.status, "reaching the point would need contact beyond the tip");
+      break;
+    default: detail::set_status(out, a.status, "no equilibrium through the point within the iteration limit"); break;
   }
   if (a.status == Status::converged && options.find_other_roots) {
     const double s_star = a.lm.u[2];

@@ -1,5 +1,7 @@
 #include "vibrissa/solve/status.hpp"
 
+#include "vibrissa/solve/solution.hpp"
+
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +15,24 @@ std::string_view to_string(Status status) {
     case Status::not_converged: return "not_converged";
   }
   return "not_converged";
+}
+
+std::string_view to_string(ContactState state) {
+  switch (state) {
+    case ContactState::free: return "free";
+    case ContactState::contact: return "contact";
+    case ContactState::pushed_past: return "pushed_past";
+  }
+  return "free";
+}
+
+std::string_view to_string(FrictionState state) {
+  switch (state) {
+    case FrictionState::none: return "none";
+    case FrictionState::stick: return "stick";
+    case FrictionState::slip: return "slip";
+  }
+  return "none";
 }
 
 Status status_from_string(std::string_view name) {

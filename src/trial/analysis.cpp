@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "vibrissa/trial/contact_geometry.hpp"
+#include "vibrissa/contact/contact_geometry.hpp"
 
 namespace vibrissa::trial {
 

@@ -13,7 +13,7 @@ Eigen::Vector3d front_view_direction(const Edge& edge, const Eigen::Vector3d& ba
   return d.cross(r).normalized();
 }
 
-double kinematic_contact_height(const Whisker& w, const Edge& edge, const Eigen::Vector3d& view_W) {
+double kinematic_contact_height(const Whisker& w, const Placement& X, const Edge& edge, const Eigen::Vector3d& view_W) {
   const Eigen::Vector3d d = edge.direction.normalized();
   Eigen::Vector3d v = view_W - view_W.dot(d) * d;
   if (!(v.norm() > 0.0)) return std::nan("");
@@ -22,7 +22,7 @@ double kinematic_contact_height(const Whisker& w, const Edge& edge, const Eigen:
   const auto& nodes = w.rest_nodes_B();
   double a_prev = 0.0, z_prev = 0.0;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const Eigen::Vector3d r = w.to_world(nodes[i]) - edge.point;
+    const Eigen::Vector3d r = X.to_world(nodes[i]) - edge.point;
     const double a = r.dot(u), z = r.dot(d);
     if (i > 0 && ((a_prev <= 0.0 && a >= 0.0) || (a_prev >= 0.0 && a <= 0.0)) && a != a_prev) {
       const double t = a_prev / (a_prev - a);

@@ -5,20 +5,12 @@
 #include <mutex>
 
 #include "vibrissa/solve/solvers.hpp"
-#include "vibrissa/trial/contact_geometry.hpp"
+#include "vibrissa/contact/contact_geometry.hpp"
+#include "vibrissa/contact/tracker.hpp"
 #include "vibrissa/trial/kinematic_prediction.hpp"
 #include "vibrissa/trial/shape_error.hpp"
 
 namespace vibrissa::trial {
-
-const char* to_string(Mode mode) {
-  switch (mode) {
-    case Mode::contact_point: return "contact_point";
-    case Mode::edge: return "edge";
-    case Mode::frictional_edge: return "frictional_edge";
-  }
-  return "?";
-}
 
 namespace {
 
@@ -31,10 +23,12 @@ Pose pose_at(const Trial& t, std::size_t i) {
   return p;
 }
 
-void record(const Whisker& w, const Solution& s, const Edge& edge, const std::vector<Eigen::Vector3d>* tracked,
+void record(const Whisker& w, const TrackedFrame& fr, const Edge& edge, const std::vector<Eigen::Vector3d>* tracked,
             ModeFrame& m) {
-  m.solved = true;
+  const Solution& s = fr.solution;
+  m.solved = fr.solved;
   m.status = s.status;
+  m.friction = s.friction;
   m.iterations = s.iterations;
   if (s.status != Status::converged) return;
   const Eigen::Vector3d d = edge.direction.normalized();
@@ -51,7 +45,7 @@ void record(const Whisker& w, const Solution& s, const Edge& edge, const std::ve
 }
 
 /// The edge a period touches: nearest to the tracked contact points, else to the rest whisker at onset.
-int choose_edge(const Trial& t, const ContactPeriod& p, const Whisker& w_onset) {
+int choose_edge(const Trial& t, const ContactPeriod& p, const Whisker& w, const Placement& X_onset) {
   const auto& edges = t.meta.edges;
   if (edges.size() == 1) return 0;
   int best = 0;
@@ -65,7 +59,7 @@ int choose_edge(const Trial& t, const ContactPeriod& p, const Whisker& w_onset) 
         dist += (r - r.dot(dir) * dir).norm();
       }
     } else {
-      dist = nearest_rest_point(w_onset, edges[k]).distance;
+      dist = nearest_rest_point(w, X_onset, edges[k]).distance;
     }
     if (dist < best_d) {
       best_d = dist;
@@ -117,53 +111,47 @@ PipelineResult run_pipeline(const Trial& trial, const PipelineOptions& opt, cons
     try {
       const auto pu = static_cast<std::size_t>(pi);
       const ContactPeriod& p = periods[pu];
-      const Whisker base_w = Whisker::from_points(res.pre.rest_shapes[pu], props, pose_at(t, p.first));
+      const Whisker w = Whisker::from_points(res.pre.rest_shapes[pu], props, pose_at(t, p.first));
       PeriodInfo& info = res.periods[pu];
-      info.edge_index = choose_edge(t, p, base_w);
+      info.edge_index = choose_edge(t, p, w, Placement(pose_at(t, p.first)));
       const Edge& edge = t.meta.edges[static_cast<std::size_t>(info.edge_index)];
-      const Eigen::Vector3d d = edge.direction.normalized();
-      // Direction of motion into the edge at onset (frames on either side of the first contact frame).
-      const NearestOnWhisker touch0 = nearest_rest_point(base_w, edge);
-      const Whisker w_before = base_w.placed(pose_at(t, p.first > 0 ? p.first - 1 : p.first));
-      const Whisker w_after = base_w.placed(pose_at(t, std::min(p.first + 1, n - 1)));
-      info.approach_W = approach_direction(w_before, w_after, touch0.arc_length, edge);
-      const std::optional<Eigen::Vector3d> approach =
-          info.approach_W.norm() > 0.0 ? std::optional<Eigen::Vector3d>(info.approach_W) : std::nullopt;
+      const EdgeSegment segment = infinite_segment(edge);
 
-      std::optional<LoadState> warm_cp, warm_edge, warm_fric;
-      std::optional<double> hint_cp, hint_edge;
-      std::optional<Eigen::Vector3d> prev_fric;
+      // One contact tracker per mode, driven by the tracked contact flags (contact/tracker.hpp). The frame
+      // before the period (when there is one) gives the direction of motion into the edge at onset.
+      std::vector<std::pair<ContactMode, ModeFrame FrameResult::*>> modes;
+      if (res.has_contact_point_mode) modes.emplace_back(ContactMode::contact_point, &FrameResult::contact_point);
+      if (res.has_edge_mode) modes.emplace_back(ContactMode::edge, &FrameResult::edge);
+      if (res.has_frictional_mode) modes.emplace_back(ContactMode::frictional_edge, &FrameResult::frictional);
+      std::vector<ContactTracker> trackers;
+      trackers.reserve(modes.size());
+      for (const auto& [mode, member] : modes) {
+        TrackerOptions to;
+        to.mode = mode;
+        to.mu = opt.mu.value_or(0.0);
+        to.solve = sopt;
+        trackers.emplace_back(w, to);
+        TrackedInput before;
+        before.in_contact = false;
+        if (p.first > 0) trackers.back().step_tracked(Placement(pose_at(t, p.first - 1)), &segment, before);
+      }
       for (std::size_t i = p.first; i <= p.last; ++i) {
         counter.check();
         FrameResult& fr = res.frames[i];
         fr.period = static_cast<int>(pi);
         const std::size_t k = i - p.first;
         fr.period_edge = k < 2 || k + 2 >= p.size();
-        const Whisker w = base_w.placed(pose_at(t, i));
-        fr.kinematic_height = kinematic_contact_height(w, edge, res.view_direction_W);
+        const Placement X(pose_at(t, i));
+        fr.kinematic_height = kinematic_contact_height(w, X, edge, res.view_direction_W);
         const std::vector<Eigen::Vector3d>* tracked = t.has_shapes() ? &t.shape_W[i] : nullptr;
-        if (res.has_contact_point_mode) {
-          const Solution s = solve_point(w, t.contact_W[i], hint_cp, sopt, warm_cp ? &*warm_cp : nullptr, d);
-          record(w, s, edge, tracked, fr.contact_point);
-          warm_cp = s.status == Status::converged ? std::optional<LoadState>(s.state) : std::nullopt;
-          hint_cp = s.status == Status::converged ? std::optional<double>(s.arc_length) : std::nullopt;
-        }
-        if (res.has_edge_mode) {
-          const Solution s = solve_edge(w, edge, hint_edge, sopt, warm_edge ? &*warm_edge : nullptr, approach);
-          record(w, s, edge, tracked, fr.edge);
-          warm_edge = s.status == Status::converged ? std::optional<LoadState>(s.state) : std::nullopt;
-          hint_edge = s.status == Status::converged ? std::optional<double>(s.arc_length) : std::nullopt;
-          if (s.status == Status::converged && std::isnan(info.onset_height_edge))
+        TrackedInput in;
+        if (res.has_contact_point_mode) in.p_W_contact = t.contact_W[i];
+        for (std::size_t m = 0; m < modes.size(); ++m) {
+          const TrackedFrame& tf = trackers[m].step_tracked(X, &segment, in);
+          record(w, tf, edge, tracked, fr.*(modes[m].second));
+          if (tf.onset) info.approach_W = tf.approach_W;
+          if (modes[m].first == ContactMode::edge && std::isnan(info.onset_height_edge) && fr.edge.ok())
             info.onset_height_edge = fr.edge.height;
-        }
-        if (res.has_frictional_mode) {
-          // Contact history: the last frame's contact, or where the rest whisker first touches the edge.
-          const Eigen::Vector3d previous = prev_fric ? *prev_fric : nearest_rest_point(w, edge).on_edge_W;
-          const Solution s =
-              solve_frictional_edge(w, edge, *opt.mu, previous, sopt, warm_fric ? &*warm_fric : nullptr, approach);
-          record(w, s, edge, tracked, fr.frictional);
-          warm_fric = s.status == Status::converged ? std::optional<LoadState>(s.state) : std::nullopt;
-          prev_fric = s.status == Status::converged ? std::optional<Eigen::Vector3d>(s.contact_point) : std::nullopt;
         }
         counter.advance();
       }

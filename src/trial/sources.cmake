@@ -1,7 +1,6 @@
 # Sources of the trial layer
 target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/analysis.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/contact_geometry.cpp
   ${CMAKE_CURRENT_LIST_DIR}/filter.cpp
   ${CMAKE_CURRENT_LIST_DIR}/force_directions.cpp
   ${CMAKE_CURRENT_LIST_DIR}/format.cpp

@@ -4,12 +4,14 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <span>
 #include <stdexcept>
 #include <string>
 
 #include "vibrissa/core/rest_curve.hpp"
 #include "vibrissa/solve/solvers.hpp"
-#include "vibrissa/trial/contact_geometry.hpp"
+#include "vibrissa/contact/contact_geometry.hpp"
+#include "vibrissa/contact/tracker.hpp"
 
 namespace vibrissa::trial {
 
@@ -17,33 +19,6 @@ namespace {
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("synthetic trial: " + what);
-}
-
-/// Whether the rest whisker has swept past the peg: in the plane normal to the edge, the azimuth (about
-/// the base) of the whisker point at the peg's radial distance exceeds the peg's azimuth. nullopt if the
-/// whisker does not reach that distance.
-std::optional<bool> past_peg(const Whisker& w, const Edge& edge) {
-  const Eigen::Vector3d d = edge.direction.normalized();
-  const Eigen::Vector3d base = w.p_W_base();
-  auto perp = [&](const Eigen::Vector3d& p) {
-    Eigen::Vector3d r = p - base;
-    return Eigen::Vector3d(r - r.dot(d) * d);
-  };
-  const Eigen::Vector3d peg = perp(edge.point);
-  const double radius = peg.norm();
-  const auto& nodes = w.rest_nodes_B();
-  Eigen::Vector3d prev = perp(w.to_world(nodes[0]));
-  for (std::size_t i = 1; i < nodes.size(); ++i) {
-    const Eigen::Vector3d cur = perp(w.to_world(nodes[i]));
-    if (prev.norm() <= radius && cur.norm() >= radius) {
-      const double t = (radius - prev.norm()) / std::max(cur.norm() - prev.norm(), 1e-300);
-      const Eigen::Vector3d q = prev + t * (cur - prev);
-      // Signed angle from the peg to q about d: positive = ahead in the sense of rotation about +d.
-      return d.dot(peg.cross(q)) > 0.0;
-    }
-    prev = cur;
-  }
-  return std::nullopt;
 }
 
 }  // namespace
@@ -93,67 +68,53 @@ Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const RunContro
   SynthStats st;
   st.frames = n;
 
-  enum class State { free, touching, passed } state = State::free;
-  std::optional<bool> was_past;
-  std::optional<LoadState> warm;
-  Eigen::Vector3d previous_contact = Eigen::Vector3d::Zero();
-  std::optional<Eigen::Vector3d> approach;
+  // Every frame through the one contact tracker (contact/tracker.hpp): onset when the rest whisker sweeps
+  // across the peg, frictional edge mode while touching, push-past and release as everywhere else.
+  TrackerOptions topt;
+  topt.mode = ContactMode::frictional_edge;
+  topt.mu = o.mu;
+  topt.solve.compute_shape = false;
+  ContactTracker tracker(rest, topt);
+  const EdgeSegment peg_segment = infinite_segment(peg);
+  const std::span<const EdgeSegment> scene(&peg_segment, 1);
   ProgressCounter counter(control, n);
-  SolveOptions sopt;
-  sopt.compute_shape = o.shapes;
+  std::vector<Eigen::Vector3d> bent;
   for (std::size_t i = 0; i < n; ++i) {
-    const Whisker w = rest.placed(poses[i]);
-    const std::optional<bool> past = past_peg(w, peg);
-    if (state == State::free && past && *past && was_past && !*was_past) {
-      // Onset: the rest whisker has just crossed the peg. The contact starts where it touches the peg.
-      state = State::touching;
-      const NearestOnWhisker touch = nearest_rest_point(w, peg);
-      previous_contact = touch.on_edge_W;
-      const Whisker before = rest.placed(poses[i - 1]);
-      const Whisker after = rest.placed(poses[std::min(i + 1, n - 1)]);
-      const Eigen::Vector3d a = approach_direction(before, after, touch.arc_length, peg);
-      approach = a.norm() > 0.0 ? std::optional<Eigen::Vector3d>(a) : std::nullopt;
-      warm.reset();
-      ++st.periods;
-    } else if (state == State::passed && past && !*past) {
-      state = State::free;  // retracted behind the peg again
-    }
-    was_past = past;
-    if (state == State::touching) {
-      const Solution s = solve_frictional_edge(w, peg, o.mu, previous_contact, sopt, warm ? &*warm : nullptr, approach);
-      if (s.status == Status::converged) {
+    const Placement X(poses[i]);
+    const TrackedFrame& fr = tracker.step(X, scene);
+    if (fr.onset) ++st.periods;
+    if (fr.solved) {
+      const Solution& s = fr.solution;
+      if (fr.state == ContactState::contact) {
         t.contact[i] = 1;
         t.contact_W[i] = s.contact_point;
-        previous_contact = s.contact_point;
-        warm = s.state;
         ++st.contact_frames;
-        if (s.message.rfind("stick", 0) == 0) ++st.stick_frames;
-        else ++st.slip_frames;
-        if (o.shapes && !s.shape.empty()) {
-          for (int k = 0; k < o.shape_nodes; ++k) {
-            const double f = static_cast<double>(k) / (o.shape_nodes - 1) * static_cast<double>(s.shape.size() - 1);
-            const auto j = static_cast<std::size_t>(std::floor(f));
-            const double u = f - static_cast<double>(j);
-            const std::size_t j1 = std::min(j + 1, s.shape.size() - 1);
-            t.shape_W[i].push_back((1.0 - u) * s.shape[j] + u * s.shape[j1]);
-          }
-        }
+        if (s.friction == FrictionState::stick) ++st.stick_frames;
+        if (s.friction == FrictionState::slip) ++st.slip_frames;
+      } else if (s.status == Status::slipped_off) {
+        ++st.slip_offs;
+      } else if (s.status == Status::no_contact) {
+        ++st.releases;
       } else {
-        if (s.status == Status::slipped_off) {
-          ++st.slip_offs;
-          state = State::passed;
-        } else if (s.status == Status::no_contact) {
-          ++st.releases;
-          state = State::free;
-        } else {
-          ++st.failures;
-          state = State::passed;
-        }
+        ++st.failures;
       }
     }
-    if (o.shapes && t.shape_W[i].empty())
-      for (int k = 0; k < o.shape_nodes; ++k)
-        t.shape_W[i].push_back(w.rest_point_W(o.whisker_length * k / (o.shape_nodes - 1)));
+    if (o.shapes) {  // the tracked shape: deflected in contact frames, the rest shape otherwise
+      const double L = rest.length();
+      if (t.contact[i]) deflected_shape(rest, X, fr.solution.state, bent);
+      for (int k = 0; k < o.shape_nodes; ++k) {
+        const double s_k = L * k / (o.shape_nodes - 1);
+        if (!t.contact[i]) {
+          t.shape_W[i].push_back(X.to_world(rest.rest_point_B(s_k)));
+          continue;
+        }
+        const double f = static_cast<double>(k) / (o.shape_nodes - 1) * static_cast<double>(bent.size() - 1);
+        const auto j = static_cast<std::size_t>(std::floor(f));
+        const double u = f - static_cast<double>(j);
+        const std::size_t j1 = std::min(j + 1, bent.size() - 1);
+        t.shape_W[i].push_back((1.0 - u) * bent[j] + u * bent[j1]);
+      }
+    }
     counter.advance();
   }
 

@@ -40,12 +40,12 @@ TEST(Whisker, FrameFromWorldPointsRecoversPose) {
   pose.zeta = deg(50);
   const Whisker ref = Whisker::from_parabola(0.04, 12.0, WhiskerProperties{}, pose);
   std::vector<Eigen::Vector3d> pts;
-  for (const auto& n : ref.rest_nodes_B()) pts.push_back(ref.to_world(n));
+  for (const auto& n : ref.rest_nodes_B()) pts.push_back(ref.placement().to_world(n));
   const Whisker w = Whisker::from_points(pts, WhiskerProperties{});
-  EXPECT_LT((w.R_WB() - ref.R_WB()).norm(), 5e-6);
-  EXPECT_LT((w.p_W_base() - ref.p_W_base()).norm(), 1e-15);
+  EXPECT_LT((w.placement().R_WB - ref.placement().R_WB).norm(), 5e-6);
+  EXPECT_LT((w.placement().p_W_base - ref.placement().p_W_base).norm(), 1e-15);
   EXPECT_NEAR(w.length(), ref.length(), 1e-8);
-  const Pose back = w.pose();
+  const Pose back = w.placement().pose();
   EXPECT_NEAR(back.theta, pose.theta, 5e-6);
   EXPECT_NEAR(back.phi, pose.phi, 5e-6);
   EXPECT_NEAR(back.zeta, pose.zeta, 5e-6);

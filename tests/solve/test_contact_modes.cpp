@@ -152,7 +152,7 @@ TEST(Invariance, RigidMotionOfTheSceneRotatesEveryOutput) {
   const Eigen::Matrix3d Q = rotation_from_angles(0.7, -0.4, 1.1);
   const Eigen::Vector3d t(0.01, -0.02, 0.005);
   std::vector<Eigen::Vector3d> pts;
-  for (const auto& n : w.rest_nodes_B()) pts.push_back(Q * w.to_world(n) + t);
+  for (const auto& n : w.rest_nodes_B()) pts.push_back(Q * w.placement().to_world(n) + t);
   const Whisker w2 = Whisker::from_points(pts, WhiskerProperties{});
   Edge peg2;
   peg2.point = Q * peg.point + t;

@@ -11,30 +11,13 @@
 #include <Eigen/Core>
 
 #include "vibrissa/array/head.hpp"
-#include "vibrissa/solve/options.hpp"
+#include "vibrissa/contact/edge_segment.hpp"
 
 namespace vibrissa::array {
 
 enum class ObjectFrame { world, head };
 std::string_view to_string(ObjectFrame frame);
 ObjectFrame object_frame_from_string(std::string_view name, const char* field);
-
-/// A straight edge: points p0 + λ·direction, λ in [0, length] (finite) or all λ (length = +inf).
-struct EdgeSegment {
-  Eigen::Vector3d p0 = Eigen::Vector3d::Zero();            ///< [m]
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();    ///< unit
-  double length = std::numeric_limits<double>::infinity();  ///< [m]
-  /// A unit vector normal to `direction`, fixed to the object: with direction × normal it spans the plane in
-  /// which contact onset is tested (array/crossing.hpp), so that test moves rigidly with the object.
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
-
-  [[nodiscard]] bool finite() const { return length < std::numeric_limits<double>::infinity(); }
-  [[nodiscard]] bool contains(double lambda, double slack = 0.0) const {
-    return !finite() || (lambda >= -slack && lambda <= length + slack);
-  }
-  /// The solver's infinite line through this edge.
-  [[nodiscard]] Edge line() const { return Edge{p0, direction}; }
-};
 
 struct SceneObject {
   std::string kind;  ///< "edge", "peg" or "prism"

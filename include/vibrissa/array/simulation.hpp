@@ -1,13 +1,8 @@
 #pragma once
 // Full-array edge-mode simulation (spec §3.4, §4.4, Fig. 4a): every whisker of a morphology whisks with the
 // given kinematics, for each of a list of head pitches, against a scene of edges. Per whisker and frame:
-//   free --(rest whisker crosses an edge since the last frame)--> contact
-//   contact: solve edge mode (warm-started from the previous frame)
-//     converged -> contact;  no_contact -> free (the edge would have to pull);
-//     slipped_off, past a finite edge's end, or not_converged (no frictionless equilibrium left: the whisker
-//     slides along the edge and snaps free) -> pushed_past
-//   pushed_past --(rest whisker crosses that edge's line again: retraction)--> free
-// The first frame has no previous frame and is always free.
+//   one ContactTracker per (pitch, whisker) run decides onset, solve, push-past and release
+// (contact/tracker.hpp, docs/conventions.md "Contact tracking"). The first frame is always free.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -17,6 +12,7 @@
 #include <Eigen/Core>
 
 #include "vibrissa/array/head.hpp"
+#include "vibrissa/contact/tracker.hpp"
 #include "vibrissa/core/run_control.hpp"
 #include "vibrissa/array/kinematics.hpp"
 #include "vibrissa/array/morphology.hpp"
@@ -24,12 +20,8 @@
 
 namespace vibrissa::array {
 
-enum class ContactState : std::int8_t { free = 0, contact = 1, pushed_past = 2 };
-std::string_view to_string(ContactState state);
-
-enum class ContactMode { edge, frictional_edge };
-std::string_view to_string(ContactMode mode);
-ContactMode contact_mode_from_string(std::string_view name, const char* field = "solver.mode");
+// Contact states and modes are the library's (vibrissa::ContactState in solve/solution.hpp,
+// vibrissa::ContactMode in contact/tracker.hpp); the array runs the edge modes only.
 
 struct SimulationConfig {
   Morphology morphology;

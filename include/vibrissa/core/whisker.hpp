@@ -1,7 +1,9 @@
 #pragma once
 // The whisker model (spec §2.1): an intrinsically curved, tapered rod discretised as N rigid links joined by
-// bending/torsion springs. A Whisker is immutable after construction and safe to share between threads;
-// the forward model (chain.hpp) reads it and writes only into caller-owned storage.
+// bending/torsion springs. A Whisker is its rest geometry and stiffness only (the model, as Pinocchio's
+// Model): immutable after construction and shared by every frame and thread. Where it is — a Placement
+// (R_WB, p_W_base) — is a small value given to each solve; the forward model (chain.hpp) works in B and
+// writes only into caller-owned storage.
 #include <optional>
 #include <vector>
 
@@ -42,7 +44,7 @@ void validate(const WhiskerProperties& props);
 class Whisker {
  public:
   /// Rest shape from 3D points, base first (>= 3). Without a pose the points are in world coordinates and
-  /// fix the placement; with a pose only their shape is used and the whisker frame is placed by the pose.
+  /// their placement becomes placement(); with a pose only their shape is used and placement() is the pose.
   static Whisker from_points(const std::vector<Eigen::Vector3d>& points, const WhiskerProperties& props,
                              const std::optional<Pose>& pose = std::nullopt);
   /// Planar rest shape y = a x^2 in the whisker frame, arc length `length` [m], a [1/m].
@@ -50,9 +52,6 @@ class Whisker {
   /// Planar rest shape y = A x^3 + B x^2 in the whisker frame, A [1/m^2], B [1/m].
   static Whisker from_cubic(double length, double A, double B, const WhiskerProperties& props,
                             const Pose& pose = {});
-
-  /// The same whisker placed elsewhere (the rest shape in B is unchanged).
-  [[nodiscard]] Whisker placed(const Pose& pose) const;
 
   // --- geometry in the whisker-centred frame B ---
   [[nodiscard]] int links() const { return static_cast<int>(link_length_.size()); }
@@ -73,7 +72,6 @@ class Whisker {
   /// Beyond the tip the last link is extended straight (used by solvers to detect slip-off).
   void locate(double s, int& link, double& h) const;
   [[nodiscard]] Eigen::Vector3d rest_point_B(double s) const;
-  [[nodiscard]] Eigen::Vector3d rest_point_W(double s) const { return to_world(rest_point_B(s)); }
 
   // --- joint compliances (see chain.hpp) ---
   /// Bending compliance per unit weight at joint j: 1 / (E I) [1/(N·m^2)].
@@ -98,13 +96,15 @@ class Whisker {
   /// Bending stiffness at the base E I_0 [N·m^2] (scales every solve).
   [[nodiscard]] double base_bending_stiffness() const { return 1.0 / cb_.front(); }
 
-  // --- placement ---
-  [[nodiscard]] const Eigen::Matrix3d& R_WB() const { return R_WB_; }
-  [[nodiscard]] const Eigen::Vector3d& p_W_base() const { return p_W_base_; }
-  [[nodiscard]] Pose pose() const { return pose_from_rotation(R_WB_, p_W_base_); }
-  [[nodiscard]] Eigen::Vector3d to_world(const Eigen::Vector3d& p_B) const { return p_W_base_ + R_WB_ * p_B; }
-  [[nodiscard]] Eigen::Vector3d to_body(const Eigen::Vector3d& p_W) const {
-    return R_WB_.transpose() * (p_W - p_W_base_);
+  /// The placement the whisker was built with (the pose given to the factory, or where its points lay).
+  /// Solves called without a Placement use it; per-frame code passes its own.
+  [[nodiscard]] const Placement& placement() const { return placement_; }
+  /// A copy of the model whose placement() is `X_WB` (copies every array: per-frame code passes a
+  /// Placement to the solve instead).
+  [[nodiscard]] Whisker with_placement(const Placement& X_WB) const {
+    Whisker w = *this;
+    w.placement_ = X_WB;
+    return w;
   }
 
  private:
@@ -121,8 +121,7 @@ class Whisker {
   std::vector<double> cb_, ct_, weight_, weight_load_base_;
   double weight_load_slope_ = 0.0;
   double base_extra_compliance_ = 0.0;
-  Eigen::Matrix3d R_WB_ = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d p_W_base_ = Eigen::Vector3d::Zero();
+  Placement placement_;
 };
 
 }  // namespace vibrissa

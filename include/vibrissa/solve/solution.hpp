@@ -1,8 +1,9 @@
 #pragma once
 // Everything a solve reports (spec §2.4). World-frame quantities unless the name says otherwise; the
 // whisker-centred frame B is the rest frame of spec §2.1 at the whisker's current pose.
+#include <cstdint>
 #include <optional>
-#include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -30,9 +31,30 @@ struct WhiskerFrameSignals {
   double MD = 0.0;  ///< direction atan2(Mz, My) [rad]
 };
 
+/// Whether the whisker touches its object after a solve or a tracked frame (the same codes in every file).
+enum class ContactState : std::int8_t {
+  free = 0,         ///< not touching: out of reach, released (the object would have to pull), or never touched
+  contact = 1,      ///< touching, in equilibrium
+  pushed_past = 2,  ///< slipped off the tip, snapped past a fold of the equilibrium branch, or off a finite edge's
+                    ///< end: the rest whisker lies beyond the object until it retracts (spec §3.4, Fig. 4a)
+};
+std::string_view to_string(ContactState state);
+
+/// Coulomb friction state of a contact (frictional edge mode); `none` for every other mode and without contact.
+enum class FrictionState : std::int8_t {
+  none = 0,
+  stick = 1,  ///< the contact held its previous point: |F_edge| <= mu F_N
+  slip = 2,   ///< the contact moved along the edge with |F_edge| = mu F_N, opposing the slip
+};
+std::string_view to_string(FrictionState state);
+
 struct Solution {
   Status status = Status::not_converged;
-  std::string message;
+  ContactState contact_state = ContactState::free;
+  FrictionState friction = FrictionState::none;
+  /// slipped_off because the contact equilibrium branch ends in a fold (push-past by snap-through), not at the tip.
+  bool fold = false;
+  std::string_view message;  ///< human-readable detail (static text); decide from the typed fields, never from this
   double force_magnitude = 0.0;  ///< |F| [N]
   double arc_length = 0.0;       ///< s_applied [m]
   double angle = 0.0;            ///< direction of F about the loaded link's axis, atan2(F_z, F_y) [rad]

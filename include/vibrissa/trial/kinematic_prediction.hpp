@@ -12,7 +12,8 @@ namespace vibrissa::trial {
 /// Height along the edge [m] (as height_along_edge) where the projection of the rest whisker crosses the
 /// projected edge, first crossing from the base; NaN if it does not cross. `view_W` is the line of sight
 /// (need not be unit; its component along the edge is ignored).
-double kinematic_contact_height(const Whisker& placed_whisker, const Edge& edge, const Eigen::Vector3d& view_W);
+double kinematic_contact_height(const Whisker& whisker, const Placement& X_WB, const Edge& edge,
+                                const Eigen::Vector3d& view_W);
 
 /// Front-on line of sight for a peg seen from a whisker base at `base_W`: normal to the edge and to the
 /// horizontal base-to-edge direction, so the projection plane contains the peg and the whisker's length.

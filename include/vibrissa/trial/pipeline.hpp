@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "vibrissa/contact/tracker.hpp"
 #include "vibrissa/core/run_control.hpp"
 #include "vibrissa/solve/options.hpp"
 #include "vibrissa/solve/solution.hpp"
@@ -15,13 +16,14 @@
 
 namespace vibrissa::trial {
 
-enum class Mode { contact_point, edge, frictional_edge };
-const char* to_string(Mode mode);
+/// The three ways a trial's contact frames are solved: the library's contact modes (contact/tracker.hpp).
+using Mode = ContactMode;
 
 /// One mode's result in one frame (world frame unless the name says otherwise). NaN where not solved.
 struct ModeFrame {
   bool solved = false;  ///< a solve was attempted (contact frame)
   Status status = Status::no_contact;
+  FrictionState friction = FrictionState::none;  ///< stick / slip (frictional edge mode)
   Eigen::Vector3d contact_W = Eigen::Vector3d::Constant(std::nan(""));  ///< [m]
   double s_applied = std::nan("");                                       ///< arc length of contact [m]
   Eigen::Vector3d force_W = Eigen::Vector3d::Constant(std::nan(""));    ///< force on the whisker [N]

@@ -5,8 +5,10 @@
 #include <limits>
 #include <numbers>
 
-#include "vibrissa/array/crossing.hpp"
+#include "vibrissa/array/objects.hpp"
+#include "vibrissa/contact/crossing.hpp"
 
+using namespace vibrissa;
 using namespace vibrissa::array;
 
 namespace {

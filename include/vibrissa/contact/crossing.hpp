@@ -1,16 +1,16 @@
 #pragma once
-// Contact onset from the sweep of the rest whisker (issue 5 item 4): between two frames the undeflected
-// whisker crosses an edge when, seen along the edge (projected onto the plane normal to it), the edge's point
-// passes from one side of the projected whisker polyline to the other. The test is carried out in the edge's
-// own frame (p0; normal, direction × normal), so it moves rigidly with the object.
+// Contact onset from the sweep of the rest whisker: between two frames the undeflected whisker crosses an
+// edge when, seen along the edge (projected onto the plane normal to it), the edge's point passes from one
+// side of the projected whisker polyline to the other. The test is carried out in the edge's own frame (p0;
+// normal, direction × normal), so it moves rigidly with the object.
 #include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
-#include "vibrissa/array/objects.hpp"
+#include "vibrissa/contact/edge_segment.hpp"
 
-namespace vibrissa::array {
+namespace vibrissa {
 
 struct Crossing {
   double tau = 0.0;              ///< fraction of the step [0, 1] at which the crossing happens (linear in time)
@@ -34,4 +34,4 @@ std::optional<Crossing> find_crossing(const std::vector<Eigen::Vector3d>& nodes_
 /// A direction given in an edge's frame, in world coordinates.
 Eigen::Vector3d edge_vector_to_world(const EdgeSegment& edge, const Eigen::Vector2d& v_E);
 
-}  // namespace vibrissa::array
+}  // namespace vibrissa

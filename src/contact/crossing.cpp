@@ -1,11 +1,11 @@
-#include "vibrissa/array/crossing.hpp"
+#include "vibrissa/contact/crossing.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
 
-namespace vibrissa::array {
+namespace vibrissa {
 namespace {
 
 struct EdgeFrame {
@@ -79,4 +79,4 @@ std::optional<Crossing> find_crossing(const std::vector<Eigen::Vector3d>& prev_W
   return best;
 }
 
-}  // namespace vibrissa::array
+}  // namespace vibrissa
