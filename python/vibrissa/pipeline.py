@@ -52,7 +52,25 @@ def synthesize_trial_defaults():
     return dict(_vibrissa._synth_parameter_defaults())
 
 
-class TrialResult:
+class _NamedArrays:
+    """Attribute and item access to the named arrays in ``self._arrays`` (file column / dataset names)."""
+
+    _what = "array"
+
+    def __getattr__(self, name):
+        arrays = self.__dict__.get("_arrays", {})
+        if name in arrays:
+            return arrays[name]
+        raise AttributeError(f"{type(self).__name__} has no {self._what} or attribute {name!r}")
+
+    def __getitem__(self, name):
+        return self._arrays[name]
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | {k for k in self._arrays if k.isidentifier()})
+
+
+class TrialResult(_NamedArrays):
     """The outputs of ``vibrissa trial``: per-frame arrays named as the columns of ``frames.h5``
     (``result.cp_FT``, ``result["mu"]``; status columns are string arrays), ``summary`` (the dict of
     ``summary.json``), :meth:`to_dataframe`, :meth:`write` and :meth:`figures`."""
@@ -61,22 +79,13 @@ class TrialResult:
         self._outputs = outputs
         self.trial = trial
         self.columns = dict(outputs.columns())
+        self._arrays = self.columns
         self.summary = json.loads(outputs.summary_json())
 
-    def __getattr__(self, name):
-        columns = self.__dict__.get("columns", {})
-        if name in columns:
-            return columns[name]
-        raise AttributeError(f"TrialResult has no column or attribute {name!r}")
-
-    def __getitem__(self, name):
-        return self.columns[name]
+    _what = "column"
 
     def __len__(self):
         return len(self.columns["time"])
-
-    def __dir__(self):
-        return sorted(set(super().__dir__()) | set(self.columns))
 
     def __repr__(self):
         friction = self.summary.get("friction") or {}
@@ -135,7 +144,7 @@ def default_array_config():
     return json.loads(_vibrissa.default_array_config_json())
 
 
-class ArrayResult:
+class ArrayResult(_NamedArrays):
     """The outputs of ``vibrissa array``: the datasets of ``array.h5`` by name as NumPy arrays
     (``result.FT`` has shape (pitches, whiskers, frames); the render group as ``result["render/rest"]``),
     ``summary`` (the dict of ``summary.json``), ``config`` (the configuration used) and :meth:`write`."""
@@ -143,21 +152,12 @@ class ArrayResult:
     def __init__(self, run):
         self._run = run
         self.datasets = dict(run.datasets())
+        self._arrays = self.datasets
         self.summary = json.loads(run.summary_json())
         self.config = json.loads(run.config_json())
         self.wall_seconds = run.wall_seconds
 
-    def __getattr__(self, name):
-        datasets = self.__dict__.get("datasets", {})
-        if name in datasets:
-            return datasets[name]
-        raise AttributeError(f"ArrayResult has no dataset or attribute {name!r}")
-
-    def __getitem__(self, name):
-        return self.datasets[name]
-
-    def __dir__(self):
-        return sorted(set(super().__dir__()) | {k for k in self.datasets if "/" not in k})
+    _what = "dataset"
 
     def __repr__(self):
         p, w, f = self.datasets["state"].shape
