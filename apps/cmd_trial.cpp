@@ -1,7 +1,7 @@
 // `vibrissa trial TRIAL [--out DIR]`: pre-process a tracked trial, solve every contact frame in
 // contact-point, edge (and, with --mu, frictional edge) mode, run the paper's analyses and write
-// frames.csv, frames.h5, summary.json and figures (docs/trials.md).
-#include <chrono>
+// frames.csv, frames.h5, summary.json and figures (docs/trials.md). The work is trial::run_trial and
+// io::write_trial_outputs, shared with vibrissa.analyze_trial in Python.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -10,16 +10,16 @@
 #include "progress.hpp"
 #include "run_python.hpp"
 #include "vibrissa/io/trial_io.hpp"
-#include "vibrissa/io/trial_results.hpp"
+#include "vibrissa/io/trial_outputs.hpp"
 
 namespace vibrissa::cli {
 
 namespace {
 struct TrialArgs {
   std::string trial, out;
-  double mu = -1.0, mu_eq7 = -1.0, cutoff = 85.0;
-  int order = 2;
-  bool no_filter = false, rest_per_contact = false, no_figures = false, no_roll_fit = false;
+  double mu = -1.0, mu_eq7 = -1.0;
+  trial::TrialFlags flags;
+  bool no_figures = false;
 };
 }  // namespace
 
@@ -31,12 +31,12 @@ void register_trial(CLI::App& app) {
   cmd->add_option("--mu", a->mu, "also run frictional edge mode with this friction coefficient")->check(CLI::NonNegativeNumber);
   cmd->add_option("--mu-eq7", a->mu_eq7, "friction coefficient for eq. (7) (default: median mu of contact-point mode)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--cutoff", a->cutoff, "low-pass cutoff [Hz] (spec §2.3: 85)")->check(CLI::PositiveNumber);
-  cmd->add_option("--filter-order", a->order, "Butterworth order per pass (2 or 4; filtfilt doubles it)")
+  cmd->add_option("--cutoff", a->flags.cutoff, "low-pass cutoff [Hz] (spec §2.3: 85)")->check(CLI::PositiveNumber);
+  cmd->add_option("--filter-order", a->flags.filter_order, "Butterworth order per pass (2 or 4; filtfilt doubles it)")
       ->check(CLI::IsMember({2, 4}));
-  cmd->add_flag("--no-filter", a->no_filter, "do not low-pass filter the tracked signals");
-  cmd->add_flag("--no-roll-fit", a->no_roll_fit, "use the tracked zeta in contact frames instead of the theta fit");
-  cmd->add_flag("--rest-shape-per-contact", a->rest_per_contact,
+  cmd->add_flag("--no-filter", a->flags.no_filter, "do not low-pass filter the tracked signals");
+  cmd->add_flag("--no-roll-fit", a->flags.no_roll_fit, "use the tracked zeta in contact frames instead of the theta fit");
+  cmd->add_flag("--rest-shape-per-contact", a->flags.rest_shape_per_contact,
                 "use the tracked shape at the end of each contact period as its undeflected shape (spec §2.3)");
   cmd->add_flag("--no-figures", a->no_figures, "skip the PNG figures");
   cmd->callback([a] {
@@ -44,15 +44,9 @@ void register_trial(CLI::App& app) {
     const fs::path in(a->trial);
     const fs::path out = a->out.empty() ? in.parent_path() / (in.stem().string() + "_results") : fs::path(a->out);
     const trial::Trial tr = io::read_trial(a->trial);
-    trial::PipelineOptions opt;
-    opt.preprocess.filter = !a->no_filter;
-    opt.preprocess.cutoff_hz = a->cutoff;
-    opt.preprocess.filter_order = a->order;
-    opt.preprocess.roll_from_theta = !a->no_roll_fit;
-    opt.preprocess.rest_shape_per_contact = a->rest_per_contact;
-    if (a->mu >= 0.0) opt.mu = a->mu;
-    std::size_t contact = 0;
-    for (auto c : tr.contact) contact += c;
+    if (a->mu >= 0.0) a->flags.mu = a->mu;
+    if (a->mu_eq7 >= 0.0) a->flags.mu_eq7 = a->mu_eq7;
+    const std::size_t contact = trial::contact_frame_count(tr);
     Progress progress("solving contact frames", contact);
     RunControl control;
     std::size_t shown = 0;
@@ -60,23 +54,13 @@ void register_trial(CLI::App& app) {
       progress.advance(done - shown);
       shown = done;
     };
-    const auto t0 = std::chrono::steady_clock::now();
-    const trial::PipelineResult result = trial::run_pipeline(tr, opt, control);
-    trial::AnalysisOptions aopt;
-    if (a->mu_eq7 >= 0.0) aopt.mu_eq7 = a->mu_eq7;
-    const trial::TrialAnalysis analysis = trial::analyse_trial(result, aopt);
+    const trial::TrialRun run = trial::run_trial(tr, trial::run_options(a->flags), control);
     progress.finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-    fs::create_directories(out);
-    const io::ResultTable table = io::result_table(result, analysis);
-    io::write_result_table_csv(table, (out / "frames.csv").string());
-    io::write_result_table_h5(table, (out / "frames.h5").string());
-    nlohmann::json summary = io::summary_json(result, analysis);
-    summary["pipeline_seconds"] = seconds;
-    io::write_json(summary, (out / "summary.json").string());  // last: its presence marks a finished run
-    std::cout << "vibrissa trial: " << tr.frames() << " frames, " << result.pre.periods.size() << " contact periods, "
-              << contact << " contact frames solved in " << seconds << " s\n";
+    const io::TrialOutputs outputs = io::trial_outputs(run);
+    io::write_trial_outputs(outputs, out);
+    const trial::TrialAnalysis& analysis = run.analysis;
+    std::cout << "vibrissa trial: " << tr.frames() << " frames, " << run.result.pre.periods.size()
+              << " contact periods, " << contact << " contact frames solved in " << run.pipeline_seconds << " s\n";
     if (analysis.friction)
       std::cout << "  median mu (contact-point mode, F_N >= 0.1 mN): " << analysis.friction->median << " over "
                 << analysis.friction->frames_used << " frames\n";

@@ -16,6 +16,7 @@ PACKAGES=(
   libmatio-dev             # MATLAB .mat trial input
   pybind11-dev python3-dev python3-pybind11   # Python extension
   python3-numpy python3-matplotlib python3-pytest python3-h5py
+  python3-pandas           # TrialResult.to_dataframe() in the Python package
   ffmpeg                   # MP4 animations
 )
 missing=()

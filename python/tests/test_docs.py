@@ -31,6 +31,9 @@ def test_tutorial_code_blocks_run_in_order(tmp_path, monkeypatch):
             pytest.fail(f"docs/python.md python block {i + 1} failed: {error!r}\n{block}")
     assert (tmp_path / "peg.png").stat().st_size > 10_000
     assert (tmp_path / "result.json").is_file()
+    assert (tmp_path / "synthetic_results" / "summary.json").is_file()
+    assert len(list((tmp_path / "synthetic_results" / "figures").glob("*.png"))) >= 5
+    assert (tmp_path / "array_results" / "array.h5").is_file()
 
 
 def test_peg_example_script(tmp_path):

@@ -1,6 +1,15 @@
-"""Solves release the GIL: two Python threads are inside the C++ solver at the same time, and a pure-Python
-loop keeps running while a long batch solves."""
+"""Long C++ calls release the GIL: while one runs, other Python threads keep running and can enter C++ too.
 
+Method (no sleeps, no races on thread start-up): a second thread repeats a short call (pure Python, or a
+short C++ solve) and records the start and end time of each repetition; the main thread records the start and
+end of one long C++ call. Repetitions that started and ended inside the middle half of the long call can only
+exist if the long call let go of the GIL: a call that holds it stops every other thread from its first to its
+last instruction (apart from a switch interval, 5 ms, at each end, far shorter than the quarter call trimmed
+off each side). `test_the_method_detects_a_call_that_holds_the_gil` shows the measure reads zero for such a
+call, so each test below can fail.
+"""
+
+import ctypes
 import threading
 import time
 
@@ -9,76 +18,87 @@ import numpy as np
 import vibrissa
 from vibrissa import WhiskerProperties
 
+MIN_CALL_SECONDS = 0.1  # long calls must last this long for the middle half to dwarf the switch interval
 
-def long_batch_args():
-    w = vibrissa.Whisker.from_parabola(0.03, 20.0, properties=WhiskerProperties(links=200))
+
+def repetitions_inside(long_call, short_call):
+    """Runs `long_call()` here while another thread repeats `short_call()`. Returns the long call's duration
+    [s] and how many repetitions started and ended inside its middle half."""
+    stop, running = threading.Event(), threading.Event()
+    spans = []
+
+    def repeat():
+        running.set()
+        while not stop.is_set():
+            start = time.perf_counter()
+            short_call()
+            spans.append((start, time.perf_counter()))
+
+    other = threading.Thread(target=repeat)
+    other.start()
+    running.wait()
+    t0 = time.perf_counter()
+    long_call()
+    t1 = time.perf_counter()
+    stop.set()
+    other.join()
+    quarter = 0.25 * (t1 - t0)
+    inside = sum(1 for start, end in spans if t0 + quarter < start and end < t1 - quarter)
+    return t1 - t0, inside
+
+
+def pure_python():
+    sum(range(50))
+
+
+def batch_args(links=200):
+    w = vibrissa.Whisker.from_parabola(0.03, 20.0, properties=WhiskerProperties(links=links))
     f = np.linspace(0.0, 1.0, 400)
     points = np.column_stack([0.02 - 0.002 * f, 0.004 + 0.002 * f, 0.001 * f])
     return w, points
 
 
-def test_two_threads_are_inside_the_solver_together():
-    w, points = long_batch_args()
-    long_points = np.tile(points, (10, 1))  # ~4000 frames: long enough to still be running below
-    a_done = threading.Event()
-
-    def long_call():
-        vibrissa.solve_point_batch(w, long_points, warm_start=False, threads=1)
-        a_done.set()
-
-    a = threading.Thread(target=long_call)
-    a.start()
-    time.sleep(0.05)  # with the GIL held by thread a, this thread could not wake before a returns
-    woke_while_a_runs = not a_done.is_set()
-    b_result = {}
-
-    def short_call():
-        b_result["r"] = vibrissa.solve_point_batch(w, points[:5], warm_start=False, threads=1)
-        b_result["a_still_running"] = not a_done.is_set()
-
-    b = threading.Thread(target=short_call)
-    b.start()
-    b.join()
-    a.join()
-    assert woke_while_a_runs
-    # b entered and left the solver while a was inside it: the two calls overlapped.
-    assert b_result["a_still_running"] and b_result["r"].converged.all()
+def test_the_method_detects_a_call_that_holds_the_gil():
+    libc_holding = ctypes.PyDLL(None)   # PyDLL: the GIL stays held during foreign calls
+    libc_releasing = ctypes.CDLL(None)  # CDLL: released
+    w, points = batch_args()
+    for short in (pure_python, lambda: vibrissa.solve_point_batch(w, points[:5], warm_start=False, threads=1)):
+        seconds, inside = repetitions_inside(lambda: libc_holding.usleep(200_000), short)
+        assert seconds >= MIN_CALL_SECONDS and inside == 0
+        seconds, inside = repetitions_inside(lambda: libc_releasing.usleep(200_000), short)
+        assert seconds >= MIN_CALL_SECONDS and inside > 0
 
 
 def test_python_keeps_running_during_a_batch():
-    w, points = long_batch_args()
-    done = threading.Event()
-    elapsed = {}
+    w, points = batch_args()
+    seconds, inside = repetitions_inside(
+        lambda: vibrissa.solve_point_batch(w, np.tile(points, (5, 1)), warm_start=False, threads=1), pure_python)
+    assert seconds >= MIN_CALL_SECONDS
+    assert inside >= 10, (seconds, inside)
 
-    def work():
-        t0 = time.perf_counter()
-        vibrissa.solve_point_batch(w, points, warm_start=False, threads=1)
-        elapsed["batch"] = time.perf_counter() - t0
-        done.set()
 
-    t = threading.Thread(target=work)
-    ticks = 0
-    t.start()
-    while not done.is_set():
-        ticks += 1
-    t.join()
-    # A held GIL would freeze this loop for the whole batch; released, it spins freely meanwhile.
-    assert ticks > 1000, (ticks, elapsed)
+def test_two_threads_are_inside_the_solver_together():
+    w, points = batch_args()
+    seconds, inside = repetitions_inside(
+        lambda: vibrissa.solve_point_batch(w, np.tile(points, (5, 1)), warm_start=False, threads=1),
+        lambda: vibrissa.solve_point_batch(w, points[:5], warm_start=False, threads=1))
+    assert seconds >= MIN_CALL_SECONDS
+    # Short solves started and finished while the long batch was inside the solver: the calls overlapped.
+    assert inside >= 3, (seconds, inside)
 
 
 def test_single_solve_releases_the_gil():
-    w = vibrissa.Whisker.from_parabola(0.03, 20.0, properties=WhiskerProperties(links=20000))
-    done = threading.Event()
-    ticks = 0
+    w = vibrissa.Whisker.from_parabola(0.03, 20.0, properties=WhiskerProperties(links=200_000))
+    seconds, inside = repetitions_inside(lambda: vibrissa.solve_point(w, [0.02, 0.004, 0.001]), pure_python)
+    assert seconds >= MIN_CALL_SECONDS
+    assert inside >= 10, (seconds, inside)
 
-    def work():
-        for _ in range(3):
-            vibrissa.solve_point(w, [0.02, 0.004, 0.001])
-        done.set()
 
-    t = threading.Thread(target=work)
-    t.start()
-    while not done.is_set():
-        ticks += 1
-    t.join()
-    assert ticks > 1000
+def test_pipeline_calls_release_the_gil():
+    """synthesize_trial / analyze_trial / simulate_array run on a worker thread; the caller waits with the GIL
+    released (python/src/interruptible.hpp)."""
+    seconds, inside = repetitions_inside(lambda: vibrissa.synthesize_trial(duration=3.0), pure_python)
+    assert seconds >= MIN_CALL_SECONDS and inside >= 10, (seconds, inside)
+    trial = vibrissa.synthesize_trial(duration=2.0)
+    seconds, inside = repetitions_inside(lambda: vibrissa.analyze_trial(trial, mu=0.48), pure_python)
+    assert seconds >= MIN_CALL_SECONDS and inside >= 10, (seconds, inside)

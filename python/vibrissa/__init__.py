@@ -10,6 +10,10 @@ The compiled core (``vibrissa._vibrissa``) mirrors the C++ library one to one: :
   :func:`solve_force_batch`), returning a :class:`BatchResult` of stacked NumPy arrays;
 * the JSON case round trip of ``vibrissa solve`` (:func:`load_case`, :func:`make_whisker`,
   :func:`solve_case_file`);
+* the whole pipeline of the CLI with NumPy arrays out: :func:`synthesize_trial` (``vibrissa synth``),
+  :func:`read_trial` / :meth:`Trial.write`, :func:`analyze_trial` (``vibrissa trial``) -> :class:`TrialResult`,
+  :func:`simulate_array` (``vibrissa array``) -> :class:`ArrayResult`; bit-identical to the CLI,
+  interruptible with Ctrl-C, with ``progress`` callbacks;
 * plotting helpers (:mod:`vibrissa.plot`, needs matplotlib).
 
 SI units throughout: m, N, N·m, Pa, rad. World-frame quantities unless the name says otherwise
@@ -55,11 +59,26 @@ from .batch import (  # noqa: F401
     solve_point_batch,
 )
 from .case import case_from_dict, load_case, make_whisker, solve_case_file  # noqa: F401
+from .pipeline import (  # noqa: F401
+    ArrayResult,
+    Trial,
+    TrialResult,
+    analyze_trial,
+    default_array_config,
+    read_trial,
+    simulate_array,
+    synthesize_trial,
+    synthesize_trial_defaults,
+)
 
 __all__ = [
-    "BaseJoint", "BatchResult", "Case", "ContactState", "Edge", "FrictionState", "LoadState", "Pose", "STATUS_NAMES", "Scheme", "Solution",
+    "ArrayResult", "Trial", "TrialResult", "analyze_trial", "default_array_config", "read_trial",
+    "simulate_array", "synthesize_trial", "synthesize_trial_defaults",
+    "BaseJoint", "BatchResult", "Case", "ContactState", "Edge", "FrictionState", "LoadState", "Pose",
+    "STATUS_NAMES", "Scheme", "Solution",
     "SolveOptions", "Status", "Whisker", "WhiskerFrameSignals", "WhiskerProperties", "__version__",
-    "case_from_dict", "load_case", "make_whisker", "max_threads", "nearest_rest_point", "pose_from_rotation", "rotation_from_angles",
+    "case_from_dict", "load_case", "make_whisker", "max_threads", "nearest_rest_point", "pose_from_rotation",
+    "rotation_from_angles",
     "solution_to_json", "solve_case", "solve_case_file", "solve_dead_load", "solve_edge", "solve_edge_batch",
     "solve_force", "solve_force_batch", "solve_frictional_edge", "solve_frictional_edge_batch", "solve_point",
     "solve_point_batch", "status_from_string", "write_result",

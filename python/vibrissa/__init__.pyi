@@ -39,4 +39,14 @@ from .case import load_case as load_case
 from .case import make_whisker as make_whisker
 from .case import solve_case_file as solve_case_file
 
+from .pipeline import ArrayResult as ArrayResult
+from .pipeline import Trial as Trial
+from .pipeline import TrialResult as TrialResult
+from .pipeline import analyze_trial as analyze_trial
+from .pipeline import default_array_config as default_array_config
+from .pipeline import read_trial as read_trial
+from .pipeline import simulate_array as simulate_array
+from .pipeline import synthesize_trial as synthesize_trial
+from .pipeline import synthesize_trial_defaults as synthesize_trial_defaults
+
 __all__: list[str]

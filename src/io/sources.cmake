@@ -6,4 +6,5 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/trial_h5.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_io.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_mat.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/trial_outputs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_results.cpp)

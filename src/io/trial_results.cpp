@@ -9,6 +9,7 @@
 
 #include "h5_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
+#include "vibrissa/trial/trial_run.hpp"
 
 namespace vibrissa::io {
 
@@ -166,9 +167,7 @@ nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
   j["frames"] = t.frames();
   j["sample_rate_Hz"] = r.pre.sample_rate_hz;
   j["contact_periods"] = r.pre.periods.size();
-  std::size_t contact = 0;
-  for (auto c : t.contact) contact += c;
-  j["contact_frames"] = contact;
+  j["contact_frames"] = contact_frame_count(t);
   j["zeta_source"] = r.pre.zeta_source;
   if (r.pre.roll)
     j["roll_fit"] = {{"slope", r.pre.roll->slope}, {"intercept_rad", r.pre.roll->intercept}, {"r2", r.pre.roll->r2},

@@ -12,4 +12,6 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/shape_error.cpp
   ${CMAKE_CURRENT_LIST_DIR}/statistics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/synth.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/synth_parameters.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/trial_run.cpp
   ${CMAKE_CURRENT_LIST_DIR}/z_error.cpp)

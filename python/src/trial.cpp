@@ -1,0 +1,204 @@
+// Trials from Python (docs/python.md, "Trials"): the Trial class, reading and writing trial files, synthetic
+// trials and the analysis of `vibrissa trial`. Every call goes through the same library functions as the CLI
+// (io::read_trial / write_trial, trial::synth_options_from_parameters + synthesize_trial, trial::run_trial +
+// io::trial_outputs / write_trial_outputs), so Python and the CLI give bit-identical numbers. The long calls
+// run through run_interruptible (GIL released, Ctrl-C, progress). The pure-Python layer
+// (python/vibrissa/pipeline.py) wraps the results.
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "interruptible.hpp"
+#include "vibrissa/io/trial_io.hpp"
+#include "vibrissa/io/trial_outputs.hpp"
+#include "vibrissa/trial/synth_parameters.hpp"
+
+namespace vibrissa::python {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// (n, K, 3) tracked shapes, NaN-padded to the longest frame (as in the HDF5 trial file).
+py::array_t<double> shapes_array(const trial::Trial& t) {
+  std::size_t k = 0;
+  for (const auto& s : t.shape_W) k = std::max(k, s.size());
+  py::array_t<double> a({t.shape_W.size(), k, std::size_t{3}});
+  double* p = a.mutable_data();
+  std::fill(p, p + a.size(), kNaN);
+  for (std::size_t f = 0; f < t.shape_W.size(); ++f)
+    for (std::size_t i = 0; i < t.shape_W[f].size(); ++i)
+      for (int c = 0; c < 3; ++c) p[(f * k + i) * 3 + c] = t.shape_W[f][i][c];
+  return a;
+}
+
+py::array_t<double> edges_array(const std::vector<Edge>& edges) {
+  py::array_t<double> a({edges.size(), std::size_t{6}});
+  double* p = a.mutable_data();
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    for (int c = 0; c < 3; ++c) {
+      p[6 * e + c] = edges[e].point[c];
+      p[6 * e + 3 + c] = edges[e].direction[c];
+    }
+  return a;
+}
+
+py::object optional_array(bool present, const py::object& array) { return present ? array : py::object(py::none()); }
+
+std::string trial_repr(const trial::Trial& t) {
+  std::size_t periods = trial::contact_periods(t.contact).size();
+  std::string r = "Trial(frames=" + std::to_string(t.frames()) + ", contact_frames=" +
+                  std::to_string(trial::contact_frame_count(t)) + ", periods=" + std::to_string(periods);
+  if (t.frames() > 1) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, ", duration=%.4g s", t.time.back() - t.time.front());
+    r += buf;
+  }
+  r += std::string(", contact_point=") + (t.has_contact_point() ? "yes" : "no") +
+       ", shapes=" + (t.has_shapes() ? "yes" : "no");
+  if (!t.source.empty()) r += ", source='" + t.source + "'";
+  return r + ")";
+}
+
+/// synthesize_trial keywords -> SynthOptions through the CLI's parameter table. Unknown keyword: TypeError.
+trial::SynthOptions synth_options_from_kwargs(const py::dict& kwargs) {
+  std::map<std::string, double> values;
+  const std::map<std::string, double> defaults = trial::synth_parameter_defaults();
+  std::optional<std::uint64_t> seed;
+  bool shapes = false;
+  for (auto item : kwargs) {
+    const std::string name = py::str(item.first);
+    if (name == "seed") {
+      seed = item.second.cast<std::uint64_t>();
+    } else if (name == "shapes") {
+      shapes = item.second.cast<bool>();
+    } else if (defaults.count(name) != 0) {
+      values[name] = item.second.cast<double>();
+    } else {
+      throw py::type_error("synthesize_trial() got an unexpected keyword argument '" + name + "'");
+    }
+  }
+  trial::SynthOptions o = trial::synth_options_from_parameters(values);
+  if (seed) o.seed = *seed;
+  o.shapes = shapes;
+  return o;
+}
+
+/// The columns of frames.h5 (numeric: float64; status: str) by name, in file order.
+py::dict table_columns(const io::ResultTable& table) {
+  py::dict out;
+  for (const auto& [name, values] : table.numeric) out[py::str(name)] = to_array(values);
+  py::module_ np = py::module_::import("numpy");
+  for (const auto& [name, values] : table.text) out[py::str(name)] = np.attr("array")(py::cast(values), "U");
+  return out;
+}
+
+}  // namespace
+
+void bind_trial(py::module_& m) {
+  py::class_<trial::Trial>(m, "Trial",
+                           "A tracked (or synthetic) whisking trial (docs/trials.md), SI units, world frame. Read one "
+                           "with vibrissa.read_trial or make one with vibrissa.synthesize_trial.")
+      .def_property_readonly("time", [](const trial::Trial& t) { return to_array(t.time); }, "(n,) time stamps [s]")
+      .def_property_readonly("base_W", [](const trial::Trial& t) { return to_array(t.base_W); },
+                             "(n, 3) whisker base point, world [m]")
+      .def_property_readonly("theta", [](const trial::Trial& t) { return to_array(t.theta); }, "(n,) protraction [rad]")
+      .def_property_readonly("phi", [](const trial::Trial& t) { return to_array(t.phi); }, "(n,) elevation [rad]")
+      .def_property_readonly(
+          "zeta", [](const trial::Trial& t) { return optional_array(t.has_zeta(), to_array(t.zeta)); },
+          "(n,) roll [rad], or None if not tracked")
+      .def_property_readonly(
+          "contact",
+          [](const trial::Trial& t) {
+            py::array_t<std::uint8_t> a(static_cast<py::ssize_t>(t.contact.size()));
+            if (!t.contact.empty()) std::memcpy(a.mutable_data(), t.contact.data(), t.contact.size());
+            return a;
+          },
+          "(n,) uint8, 1 while the whisker touches the object")
+      .def_property_readonly(
+          "contact_W",
+          [](const trial::Trial& t) { return optional_array(t.has_contact_point(), to_array(t.contact_W)); },
+          "(n, 3) tracked contact point, world [m] (NaN outside contact), or None if not tracked")
+      .def_property_readonly(
+          "shape_W", [](const trial::Trial& t) { return optional_array(t.has_shapes(), shapes_array(t)); },
+          "(n, K, 3) tracked whisker shapes, world [m], base first, NaN-padded; None if not tracked")
+      .def_property_readonly("rest_shape", [](const trial::Trial& t) { return to_array(t.meta.rest_shape); },
+                             "(K, 3) undeflected shape, base first [m] (the pose places it)")
+      .def_property_readonly("edges", [](const trial::Trial& t) { return edges_array(t.meta.edges); },
+                             "(m, 6) the object's edges: point x, y, z [m], direction x, y, z (as in the HDF5 file)")
+      .def_property_readonly(
+          "material",
+          [](const trial::Trial& t) {
+            const trial::TrialMaterial& mt = t.meta.material;
+            py::dict d;
+            d["youngs_modulus_Pa"] = mt.youngs_modulus;
+            d["poisson_ratio"] = mt.poisson_ratio;
+            d["base_radius"] = mt.base_radius;
+            d["taper_ratio"] = mt.taper_ratio;
+            d["links"] = mt.links;
+            return d;
+          },
+          "dict: youngs_modulus_Pa, poisson_ratio, base_radius [m], taper_ratio, links")
+      .def_property_readonly("frame_rate_Hz", [](const trial::Trial& t) { return t.meta.frame_rate; },
+                             "frame rate [Hz] (informational; the time stamps are authoritative)")
+      .def_readonly("source", &trial::Trial::source, "the file it was read from ('synthetic' for synthesize_trial)")
+      .def(
+          "write", [](const trial::Trial& t, const std::string& path) { io::write_trial(t, path); }, py::arg("path"),
+          "Writes the trial as `vibrissa synth` does, format by extension (.csv, .h5/.hdf5, .mat), atomically.")
+      .def("__len__", &trial::Trial::frames)
+      .def("__repr__", &trial_repr);
+
+  m.def("read_trial", &io::read_trial, py::arg("path"),
+        "Reads a trial file (.csv, .h5/.hdf5, .mat) as `vibrissa trial` does; ValueError naming file, row and "
+        "column for invalid data.");
+
+  m.def(
+      "_synthesize_trial",
+      [](const py::dict& kwargs, const py::object& progress) {
+        const trial::SynthOptions options = synth_options_from_kwargs(kwargs);
+        return run_interruptible(
+            [&](const RunControl& control) { return trial::synthesize_trial(options, nullptr, control); }, progress);
+      },
+      py::arg("options"), py::arg("progress") = py::none());
+  m.def("_synth_parameter_defaults", &trial::synth_parameter_defaults,
+        "The numeric options of synthesize_trial / `vibrissa synth` with their defaults, in the units their names "
+        "state.");
+
+  py::class_<io::TrialOutputs>(m, "_TrialOutputs")
+      .def("columns", [](const io::TrialOutputs& o) { return table_columns(o.table); })
+      .def("summary_json", [](const io::TrialOutputs& o) { return o.summary.dump(); })
+      .def(
+          "write",
+          [](const io::TrialOutputs& o, const std::string& dir) {
+            py::gil_scoped_release release;
+            io::write_trial_outputs(o, dir);
+          },
+          py::arg("dir"));
+
+  m.def(
+      "_analyze_trial",
+      [](const trial::Trial& t, std::optional<double> mu, std::optional<double> mu_eq7, double cutoff,
+         int filter_order, bool no_filter, bool no_roll_fit, bool rest_shape_per_contact, const py::object& progress) {
+        trial::TrialFlags flags;
+        flags.mu = mu;
+        flags.mu_eq7 = mu_eq7;
+        flags.cutoff = cutoff;
+        flags.filter_order = filter_order;
+        flags.no_filter = no_filter;
+        flags.no_roll_fit = no_roll_fit;
+        flags.rest_shape_per_contact = rest_shape_per_contact;
+        const trial::TrialRunOptions options = trial::run_options(flags);
+        return run_interruptible(
+            [&](const RunControl& control) { return io::trial_outputs(trial::run_trial(t, options, control)); },
+            progress);
+      },
+      py::arg("trial"), py::arg("mu"), py::arg("mu_eq7"), py::arg("cutoff"), py::arg("filter_order"),
+      py::arg("no_filter"), py::arg("no_roll_fit"), py::arg("rest_shape_per_contact"), py::arg("progress"));
+}
+
+}  // namespace vibrissa::python
