@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "run_python.hpp"
+#include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/io/trial_results.hpp"
 
@@ -38,7 +39,7 @@ void register_trial(CLI::App& app) {
   cmd->add_flag("--no-roll-fit", a->no_roll_fit, "use the tracked zeta in contact frames instead of the theta fit");
   cmd->add_flag("--rest-shape-per-contact", a->rest_per_contact,
                 "use the tracked shape at the end of each contact period as its undeflected shape (spec §2.3)");
-  cmd->add_flag("--no-figures", a->no_figures, "skip the PNG figures");
+  cmd->add_flag("--no-figures", a->no_figures, "skip the PNG figures (an older run's figures/ is removed)");
   cmd->callback([a] {
     namespace fs = std::filesystem;
     const fs::path in(a->trial);
@@ -68,13 +69,9 @@ void register_trial(CLI::App& app) {
     progress.finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    fs::create_directories(out);
-    const io::ResultTable table = io::result_table(result, analysis);
-    io::write_result_table_csv(table, (out / "frames.csv").string());
-    io::write_result_table_h5(table, (out / "frames.h5").string());
     nlohmann::json summary = io::summary_json(result, analysis);
     summary["pipeline_seconds"] = seconds;
-    io::write_json(summary, (out / "summary.json").string());  // last: its presence marks a finished run
+    io::write_trial_outputs(io::result_table(result, analysis), summary, out);
     std::cout << "vibrissa trial: " << tr.frames() << " frames, " << result.pre.periods.size() << " contact periods, "
               << contact << " contact frames solved in " << seconds << " s\n";
     if (analysis.friction)
@@ -85,9 +82,10 @@ void register_trial(CLI::App& app) {
                 << analysis.z_error->fit_eq6.all->r2 << "\n";
     std::cout << "  results in " << out.string() << "\n";
     if (!a->no_figures) {
-      fs::create_directories(out / "figures");
-      run_figure_script("trial_figures.py", {(out / "frames.h5").string(), (out / "summary.json").string(),
-                                             (out / "figures").string()});
+      const fs::path figures = out / io::kTrialFiguresFolder;
+      fs::create_directories(figures);
+      run_figure_script("trial_figures.py",
+                        {(out / "frames.h5").string(), (out / "summary.json").string(), figures.string()});
     }
   });
 }

@@ -1,9 +1,16 @@
-# Sources of the io layer
+# Sources of the io layer: every file the tools read or write (case_json.cpp is listed in case_sources.cmake).
 target_sources(vibrissa PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/atomic_file.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/temporary_files.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/json_file.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/figure_files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/h5_file.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_arrays.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_csv.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_h5.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_io.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_mat.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/trial_results.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/trial_results.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/morphology_table.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/array_config.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/array_outputs.cpp)
