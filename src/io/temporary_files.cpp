@@ -72,10 +72,14 @@ void install_cleanup_signal_handlers() {
   action.sa_handler = cleanup_and_reraise;
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESETHAND;
-  for (const int sig : {SIGINT, SIGTERM, SIGHUP})
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction current {};
+    // A signal ignored on entry stays ignored (nohup, background jobs of non-interactive shells).
+    if (sigaction(sig, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
     if (sigaction(sig, &action, nullptr) != 0)
       throw std::runtime_error("cannot install the handler for signal " + std::to_string(sig) + ": " +
                                std::strerror(errno));
+  }
 }
 
 }  // namespace vibrissa::io

@@ -23,7 +23,8 @@ std::size_t live_temporaries() noexcept;
 void unlink_live_temporaries() noexcept;
 
 /// Installs SIGINT, SIGTERM and SIGHUP handlers that call unlink_live_temporaries() and re-raise the signal
-/// with the default action. Throws std::runtime_error if sigaction fails.
+/// with the default action. Signals ignored on entry (nohup) stay ignored. Throws std::runtime_error if
+/// sigaction fails.
 void install_cleanup_signal_handlers();
 
 }  // namespace vibrissa::io
