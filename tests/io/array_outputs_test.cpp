@@ -2,28 +2,21 @@
 // and the figures of an older run removed so that a directory never mixes runs.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "fresh_dir.hpp"
 #include "vibrissa/io/array_config.hpp"
 #include "vibrissa/io/array_outputs.hpp"
 #include "vibrissa/io/figure_files.hpp"
 
 namespace fs = std::filesystem;
+using vibrissa::test::fresh_dir;
 using namespace vibrissa;
 using nlohmann::json;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("vibrissa_array_out_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 json small_config() {
   json j = io::default_array_config_json();

@@ -10,21 +10,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "fresh_dir.hpp"
 #include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/json_file.hpp"
 #include "vibrissa/io/temporary_files.hpp"
 
 namespace fs = std::filesystem;
+using vibrissa::test::fresh_dir;
 using namespace vibrissa::io;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("vibrissa_atomic_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
 
 std::string contents(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
