@@ -1,6 +1,6 @@
-"""Outputs of `vibrissa array` and `vibrissa trial` are atomic: a run killed while writing (SIGTERM, SIGINT,
-SIGHUP) leaves the older outputs byte-identical and no `.tmp-*` file, and exits with the signal's status;
---no-figures removes the figures of an older run. Deterministic through the documented test hook
+"""Outputs of `vibrissa array`, `trial`, `synth` and of the figure scripts are atomic: a run killed while
+writing (SIGTERM, SIGINT, SIGHUP) leaves the older outputs byte-identical and no `.tmp-*` file, and exits
+with the signal's status; --no-figures removes the figures of an older run. Deterministic through the documented test hook
 VIBRISSA_TEST_PAUSE_BEFORE_COMMIT (io/atomic_file.hpp): the writer stops after writing every temporary,
 before the first rename, and waits for the signal."""
 
@@ -8,6 +8,7 @@ import json
 import os
 import signal
 import subprocess
+import sys
 
 import pytest
 
@@ -125,3 +126,30 @@ def test_no_figures_removes_the_figures_of_an_older_run(cli, tmp_path):
     (results / "figures" / "fig3a_world_signals.png").write_bytes(b"old figure")
     run(cli, "trial", trial, "--out", results, "--no-figures")
     assert sorted(p.name for p in results.iterdir()) == ["frames.csv", "frames.h5", "summary.json"]
+
+
+FIGURES = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "figures")
+SAVE_THEN = """
+import os, signal, sys
+from atomic_save import replacing
+with replacing(sys.argv[1]) as tmp:
+    with open(tmp, "wb") as f:
+        f.write(b"half a new figure")
+    assert os.path.dirname(tmp) == os.path.dirname(os.path.abspath(sys.argv[1]))
+    if sys.argv[2] == "raise":
+        raise RuntimeError("matplotlib failed")
+    if sys.argv[2] == "kill":
+        os.kill(os.getpid(), signal.SIGTERM)
+"""
+
+
+@pytest.mark.parametrize("how, code", [("raise", 1), ("kill", 128 + signal.SIGTERM), ("finish", 0)])
+def test_figure_scripts_replace_their_files_atomically(tmp_path, how, code):
+    figure = tmp_path / "array_traces.png"
+    figure.write_bytes(b"old figure")
+    done = subprocess.run([sys.executable, "-c", SAVE_THEN, str(figure), how], cwd=FIGURES,
+                          env=dict(os.environ, PYTHONPATH=FIGURES), capture_output=True, text=True,
+                          preexec_fn=default_signals)
+    assert done.returncode == code, done.stderr
+    assert figure.read_bytes() == (b"half a new figure" if how == "finish" else b"old figure")
+    assert leftovers(tmp_path) == []

@@ -56,7 +56,8 @@ class StagedFiles {
   }
   /// Writes a text file through a stream; throws std::runtime_error naming `target` if the stream fails.
   void stage_text(const std::filesystem::path& target, const std::function<void(std::ostream&)>& write);
-  /// Renames every temporary over its target, in staging order.
+  /// Renames every temporary over its target, in staging order. (Should a rename fail, which takes a
+  /// directory turned read-only meanwhile, the targets renamed before it stay replaced.)
   void commit();
 
  private:
