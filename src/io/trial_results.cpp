@@ -1,17 +1,15 @@
 #include "vibrissa/io/trial_results.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <map>
 #include <numbers>
 #include <stdexcept>
 
 #include "h5_file.hpp"
-#include "vibrissa/io/json_file.hpp"
-#include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/atomic_file.hpp"
-#include "vibrissa/io/trial_io.hpp"
+#include "vibrissa/io/figure_files.hpp"
+#include "vibrissa/io/json_file.hpp"
 
 namespace vibrissa::io {
 
