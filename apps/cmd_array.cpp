@@ -1,9 +1,8 @@
 // `vibrissa array [CONFIG] [--out DIR] [--csv] [--no-figures]`: the full rat array whisking against edges,
 // pegs or prisms for one or more head pitches (spec §3.4, §4.4, Fig. 4a; docs/array.md). Writes array.h5,
-// summary.json, pitch_summary.csv, optional array.csv, and figures.
+// summary.json, pitch_summary.csv, config.json, optional array.csv (io::write_array_outputs), and figures.
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -12,9 +11,10 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "run_python.hpp"
-#include "vibrissa/array/config.hpp"
-#include "vibrissa/array/output.hpp"
 #include "vibrissa/array/sweep.hpp"
+#include "vibrissa/io/array_config.hpp"
+#include "vibrissa/io/array_outputs.hpp"
+#include "vibrissa/io/figure_files.hpp"
 
 namespace vibrissa::cli {
 
@@ -53,15 +53,15 @@ void register_array(CLI::App& app) {
   cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--csv", a->csv, "also write array.csv (one row per pitch, whisker and frame)");
   cmd->add_flag("--gif", a->gif, "write the animation as GIF instead of MP4");
-  cmd->add_flag("--no-figures", a->no_figures, "skip the animation and PNG figures");
+  cmd->add_flag("--no-figures", a->no_figures, "skip the animation and PNG figures (an older run's are removed)");
   cmd->add_flag("--print-default-config", a->print_default, "print the built-in configuration and exit");
   cmd->callback([a] {
     namespace fs = std::filesystem;
     if (a->print_default) {
-      std::cout << std::setw(2) << array::default_config_json() << "\n";
+      std::cout << std::setw(2) << io::default_array_config_json() << "\n";
       return;
     }
-    nlohmann::json j = a->config.empty() ? array::default_config_json() : array::read_config_json(a->config);
+    nlohmann::json j = a->config.empty() ? io::default_array_config_json() : io::read_array_config_json(a->config);
     if (!a->pitches.empty()) {
       nlohmann::json list = nlohmann::json::array();
       for (double p : parse_pitch_list(a->pitches)) list.push_back(p * 180.0 / std::numbers::pi);
@@ -69,13 +69,8 @@ void register_array(CLI::App& app) {
     }
     if (a->threads > 0) j["threads"] = a->threads;
     const fs::path base = a->config.empty() ? fs::current_path() : fs::path(a->config).parent_path();
-    const array::SimulationConfig config = array::config_from_json(j, base);
+    const array::SimulationConfig config = io::array_config_from_json(j, base);
     const fs::path out(a->out);
-    fs::create_directories(out);
-    {
-      std::ofstream used(out / "config.json");
-      used << std::setw(2) << j << "\n";
-    }
     const std::size_t total = config.pitches.size() * config.morphology.whiskers.size() * config.times.size();
     std::cout << "vibrissa array: " << config.morphology.whiskers.size() << " whiskers (" << config.morphology.source
               << ") x " << config.times.size() << " frames x " << config.pitches.size() << " head pitch(es)\n";
@@ -94,13 +89,7 @@ void register_array(CLI::App& app) {
               << result.wall_seconds << " s (" << result.solves << " edge solves";
     if (result.failed_solves) std::cout << ", " << result.failed_solves << " without equilibrium -> pushed past";
     std::cout << ")\n";
-    array::write_array_h5(result, config, out / "array.h5");
-    if (a->csv) array::write_array_csv(result, out / "array.csv");
-    array::write_pitch_summary_csv(result, out / "pitch_summary.csv");
-    {
-      std::ofstream s(out / "summary.json");
-      s << std::setw(2) << array::summary_json(result, config) << "\n";
-    }
+    io::write_array_outputs(result, config, j, out, {.csv = a->csv});
     std::cout << std::setprecision(3);
     std::cout << "pitch_deg  touching  pushed_past  peak_MB_uNm (whisker)  mean_peak_MB_uNm\n";
     for (const array::PitchSummary& s : array::summarize_pitches(result))
@@ -111,11 +100,11 @@ void register_array(CLI::App& app) {
     std::cout.flush();
     if (!a->no_figures) {
       const std::string h5 = (out / "array.h5").string();
-      run_figure_script("array_traces.py", {h5, (out / "array_traces.png").string()});
+      run_figure_script("array_traces.py", {h5, (out / io::kArrayTracesFigure).string()});
       run_figure_script("array_animation.py",
-                        {h5, (out / (a->gif ? "array_animation.gif" : "array_animation.mp4")).string()});
+                        {h5, (out / (a->gif ? io::kArrayAnimationGif : io::kArrayAnimationMp4)).string()});
       if (config.pitches.size() > 1)
-        run_figure_script("array_pitch_sweep.py", {h5, (out / "pitch_sweep.png").string()});
+        run_figure_script("array_pitch_sweep.py", {h5, (out / io::kArrayPitchSweepFigure).string()});
     }
     std::cout << "wrote " << out.string() << "/{array.h5, summary.json, pitch_summary.csv"
               << (a->csv ? ", array.csv" : "") << (a->no_figures ? "" : ", figures") << "}\n";

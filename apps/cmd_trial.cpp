@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "run_python.hpp"
+#include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/io/trial_outputs.hpp"
 
@@ -38,7 +39,7 @@ void register_trial(CLI::App& app) {
   cmd->add_flag("--no-roll-fit", a->flags.no_roll_fit, "use the tracked zeta in contact frames instead of the theta fit");
   cmd->add_flag("--rest-shape-per-contact", a->flags.rest_shape_per_contact,
                 "use the tracked shape at the end of each contact period as its undeflected shape (spec §2.3)");
-  cmd->add_flag("--no-figures", a->no_figures, "skip the PNG figures");
+  cmd->add_flag("--no-figures", a->no_figures, "skip the PNG figures (an older run's figures/ is removed)");
   cmd->callback([a] {
     namespace fs = std::filesystem;
     const fs::path in(a->trial);
@@ -69,9 +70,10 @@ void register_trial(CLI::App& app) {
                 << analysis.z_error->fit_eq6.all->r2 << "\n";
     std::cout << "  results in " << out.string() << "\n";
     if (!a->no_figures) {
-      fs::create_directories(out / "figures");
-      run_figure_script("trial_figures.py", {(out / "frames.h5").string(), (out / "summary.json").string(),
-                                             (out / "figures").string()});
+      const fs::path figures = out / io::kTrialFiguresFolder;
+      fs::create_directories(figures);
+      run_figure_script("trial_figures.py",
+                        {(out / "frames.h5").string(), (out / "summary.json").string(), figures.string()});
     }
   });
 }

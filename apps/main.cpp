@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "vibrissa/io/temporary_files.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"vibrissa: quasi-static 3D mechanics of rodent whiskers touching objects (Huet & Hartmann 2016)"};
@@ -14,6 +15,9 @@ int main(int argc, char** argv) {
   vibrissa::cli::register_synth(app);
   vibrissa::cli::register_array(app);
   try {
+    // A killed run (Ctrl-C, kill, a closed terminal) removes its half-written temporaries and keeps the
+    // older outputs (docs/formats.md, "Atomic outputs").
+    vibrissa::io::install_cleanup_signal_handlers();
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);

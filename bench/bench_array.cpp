@@ -2,19 +2,19 @@
 // world-fixed peg, both sides of the Towal array. Arguments: frames, pitches, sides (1 right, 2 both).
 #include <benchmark/benchmark.h>
 
-#include "vibrissa/array/config.hpp"
+#include "vibrissa/io/array_config.hpp"
 
 namespace {
 
 vibrissa::array::SimulationConfig make_config(int frames, int pitches, int sides) {
-  nlohmann::json j = vibrissa::array::default_config_json();
+  nlohmann::json j = vibrissa::io::default_array_config_json();
   j["morphology"]["sides"] = sides == 2 ? "both" : "right";
   j["time"]["frames"] = frames;
   j["output"]["render_count"] = 0;
   nlohmann::json list = nlohmann::json::array();
   for (int p = 0; p < pitches; ++p) list.push_back(pitches == 1 ? 0.0 : -20.0 + 40.0 * p / (pitches - 1));
   j["head"]["pitches_deg"] = list;
-  return vibrissa::array::config_from_json(j);
+  return vibrissa::io::array_config_from_json(j);
 }
 
 void BM_ArraySimulation(benchmark::State& state) {

@@ -15,6 +15,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from atomic_save import save_animation, save_figure  # noqa: E402
 from matplotlib import animation  # noqa: E402
 
 COLOURS = {0: "0.72", 1: "red", 2: "green"}
@@ -86,16 +87,16 @@ def main():
 
     best = int(np.argmax((states == 1).sum(axis=0)))
     draw(best)
-    fig.savefig(os.path.splitext(out)[0] + "_frame.png")
+    save_figure(fig, os.path.splitext(out)[0] + "_frame.png")
 
     anim = animation.FuncAnimation(fig, draw, frames=len(d["frames"]), blit=False)
     if out.endswith(".mp4") and animation.FFMpegWriter.isAvailable():
-        anim.save(out, writer=animation.FFMpegWriter(fps=12, bitrate=1800))
+        save_animation(anim, out, animation.FFMpegWriter(fps=12, bitrate=1800))
     else:
         if out.endswith(".mp4"):
             out = out[:-4] + ".gif"
             print("array_animation: ffmpeg not found, writing GIF instead")
-        anim.save(out, writer=animation.PillowWriter(fps=12))
+        save_animation(anim, out, animation.PillowWriter(fps=12))
     print("wrote", out)
 
 

@@ -12,6 +12,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from atomic_save import save_figure  # noqa: E402
 
 
 def main():
@@ -46,7 +47,7 @@ def main():
     a1.legend(loc="upper left", fontsize=8)
     a1.set_title("array summary per pitch")
     fig.tight_layout()
-    fig.savefig(sys.argv[2], dpi=110)
+    save_figure(fig, sys.argv[2], dpi=110)
     print("wrote", sys.argv[2])
 
 

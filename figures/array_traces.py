@@ -12,6 +12,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from atomic_save import save_figure  # noqa: E402
 
 
 def main():
@@ -44,7 +45,7 @@ def main():
     if touched:
         axes[0].legend(ncol=6, fontsize=7, loc="upper left")
     fig.tight_layout()
-    fig.savefig(sys.argv[2], dpi=110)
+    save_figure(fig, sys.argv[2], dpi=110)
     print("wrote", sys.argv[2])
 
 

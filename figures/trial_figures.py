@@ -14,6 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from atomic_save import save_figure  # noqa: E402
 
 CP, EDGE, FRIC = "tab:cyan", "tab:purple", "tab:orange"
 
@@ -42,7 +43,7 @@ def fit_line(ax, x, y):
 
 def save(fig, out, name):
     fig.tight_layout()
-    fig.savefig(os.path.join(out, name), dpi=110)
+    save_figure(fig, os.path.join(out, name), dpi=110)
     plt.close(fig)
 
 

@@ -1,19 +1,17 @@
 // Array simulations from Python (docs/python.md, "Whisker arrays"): the configuration of `vibrissa array`
 // (a dict, a file or the built-in default), the same config reader and simulation as the CLI, run through
 // run_interruptible (GIL released, Ctrl-C, progress). The arrays handed to Python carry the names, shapes and
-// dtypes of array.h5 (array::write_array_h5; python/tests/test_pipeline.py checks them against the file).
+// dtypes of array.h5 (io/array_outputs.hpp; python/tests/test_pipeline.py checks them against the file).
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
 
 #include "bindings.hpp"
 #include "interruptible.hpp"
-#include "vibrissa/array/config.hpp"
-#include "vibrissa/array/output.hpp"
+#include "vibrissa/io/array_config.hpp"
+#include "vibrissa/io/array_outputs.hpp"
 
 namespace vibrissa::python {
 
@@ -79,21 +77,6 @@ py::dict array_datasets(const ArrayRun& run) {
   return d;
 }
 
-/// The files of `vibrissa array --out DIR [--csv]` without figures.
-/// TODO(integrator): replace with io::write_array_outputs once it exists (branch io-consolidation).
-void write_array_outputs_for_python(const ArrayRun& run, const std::filesystem::path& dir, bool csv) {
-  std::filesystem::create_directories(dir);
-  {
-    std::ofstream used(dir / "config.json");
-    used << std::setw(2) << run.config_json << "\n";
-  }
-  array::write_array_h5(run.result, run.config, dir / "array.h5");
-  if (csv) array::write_array_csv(run.result, dir / "array.csv");
-  array::write_pitch_summary_csv(run.result, dir / "pitch_summary.csv");
-  std::ofstream s(dir / "summary.json");
-  s << std::setw(2) << array::summary_json(run.result, run.config) << "\n";
-}
-
 nlohmann::json parse_config(const std::string& text) {
   try {
     return nlohmann::json::parse(text);
@@ -107,7 +90,7 @@ nlohmann::json parse_config(const std::string& text) {
 void bind_array(py::module_& m) {
   py::class_<ArrayRun>(m, "_ArrayRun")
       .def("datasets", &array_datasets)
-      .def("summary_json", [](const ArrayRun& r) { return array::summary_json(r.result, r.config).dump(); })
+      .def("summary_json", [](const ArrayRun& r) { return io::array_summary_json(r.result, r.config).dump(); })
       .def("config_json", [](const ArrayRun& r) { return r.config_json.dump(); })
       .def_property_readonly("wall_seconds", [](const ArrayRun& r) { return r.result.wall_seconds; })
       .def_property_readonly("solves", [](const ArrayRun& r) { return r.result.solves; })
@@ -115,11 +98,11 @@ void bind_array(py::module_& m) {
           "write",
           [](const ArrayRun& r, const std::string& dir, bool csv) {
             py::gil_scoped_release release;
-            write_array_outputs_for_python(r, dir, csv);
+            io::write_array_outputs(r.result, r.config, r.config_json, dir, io::ArrayOutputOptions{csv});
           },
           py::arg("dir"), py::arg("csv") = false);
 
-  m.def("default_array_config_json", [] { return array::default_config_json().dump(); },
+  m.def("default_array_config_json", [] { return io::default_array_config_json().dump(); },
         "The built-in configuration of `vibrissa array` as JSON text (= --print-default-config).");
 
   m.def(
@@ -130,16 +113,16 @@ void bind_array(py::module_& m) {
         ArrayRun run;
         fs::path base = fs::current_path();
         if (path) {
-          run.config_json = array::read_config_json(*path);
+          run.config_json = io::read_array_config_json(*path);
           base = fs::path(*path).parent_path();
         } else {
-          run.config_json = config_text ? parse_config(*config_text) : array::default_config_json();
+          run.config_json = config_text ? parse_config(*config_text) : io::default_array_config_json();
         }
         if (threads) {
           if (*threads < 0) throw py::value_error("threads must be >= 0, got " + std::to_string(*threads));
           if (*threads > 0) run.config_json["threads"] = *threads;
         }
-        run.config = array::config_from_json(run.config_json, base);
+        run.config = io::array_config_from_json(run.config_json, base);
         run.result = run_interruptible(
             [&](const RunControl& control) { return array::simulate_array(run.config, control); }, progress);
         return run;

@@ -1,12 +1,8 @@
 #include "vibrissa/array/morphology.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
-
-#include <nlohmann/json.hpp>
 
 #include "array_util.hpp"
 
@@ -75,72 +71,6 @@ std::vector<Side> sides_of(Sides sides) {
   return {Side::right};
 }
 
-// Parses "C2" -> row 3, column 2; throws naming `field`.
-void parse_name(const std::string& name, int& row, int& column, const std::string& field) {
-  if (name.size() < 2) fail(field + " must be a row letter A-E and a column number, got '" + name + "'");
-  const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
-  const char* at = std::strchr(kRowLetters, letter);
-  if (letter == '\0' || at == nullptr)
-    fail(field + " must start with a row letter A-E, got '" + name + "'");
-  row = static_cast<int>(at - kRowLetters) + 1;
-  try {
-    std::size_t used = 0;
-    column = std::stoi(name.substr(1), &used);
-    if (used != name.size() - 1 || column < 0) throw std::invalid_argument("bad");
-  } catch (const std::exception&) {
-    fail(field + " must end in a column number >= 0, got '" + name + "'");
-  }
-}
-
-// Places a right-side spec on `side` (mirrors the base point; angles stay right-side equivalent).
-WhiskerSpec on_side(WhiskerSpec spec, Side side) {
-  spec.side = side;
-  if (side == Side::left) spec.p_H_base = kMirrorX * spec.p_H_base;
-  return spec;
-}
-
-WhiskerSpec spec_from_fields(const std::map<std::string, std::string>& f, const std::string& where) {
-  auto get = [&](const std::string& key) -> const std::string& {
-    const auto it = f.find(key);
-    if (it == f.end() || it->second.empty()) fail(where + "." + key + " is missing");
-    return it->second;
-  };
-  auto number = [&](const std::string& key) { return parse_number(get(key), where + "." + key); };
-  auto optional_number = [&](const std::string& key, double fallback) {
-    const auto it = f.find(key);
-    return (it == f.end() || it->second.empty()) ? fallback : parse_number(it->second, where + "." + key);
-  };
-  WhiskerSpec s;
-  s.name = get("name");
-  parse_name(s.name, s.row, s.column, where + ".name");
-  const Side side = f.count("side") ? side_from_string(get("side"), (where + ".side").c_str()) : Side::right;
-  s.arc_length = number("S_mm") * mm;
-  s.curvature = number("A_per_mm") / mm;
-  s.theta_rest = deg(number("theta_deg"));
-  s.phi_rest = deg(number("phi_deg"));
-  s.zeta_rest = deg(number("zeta_deg"));
-  s.p_H_base = Eigen::Vector3d(number("base_x_mm"), number("base_y_mm"), number("base_z_mm")) * mm;
-  const double d_mm = belli_base_diameter_mm(s.arc_length / mm, s.row, std::max(s.column, 1));
-  s.base_radius = optional_number("base_radius_um", 0.5 * d_mm * 1e3) * 1e-6;
-  s.taper_ratio = optional_number("taper_ratio", 15.0);
-  s.youngs_modulus = optional_number("youngs_modulus_GPa", 3.3) * 1e9;
-  s.poisson_ratio = optional_number("poisson_ratio", 0.38);
-  s = on_side(s, side);
-  try {
-    validate(s);
-  } catch (const std::invalid_argument& e) {
-    fail(where + ": " + e.what());
-  }
-  return s;
-}
-
-void check_unique(const Morphology& m) {
-  for (std::size_t i = 0; i < m.whiskers.size(); ++i)
-    for (std::size_t j = i + 1; j < m.whiskers.size(); ++j)
-      if (m.whiskers[i].label() == m.whiskers[j].label())
-        fail("morphology: whisker " + m.whiskers[i].label() + " appears twice in " + m.source);
-}
-
 }  // namespace
 
 std::string_view to_string(Side side) { return side == Side::right ? "right" : "left"; }
@@ -159,6 +89,29 @@ Sides sides_from_string(std::string_view name, const char* field) {
 }
 
 std::string WhiskerSpec::label() const { return name + (side == Side::right ? "R" : "L"); }
+
+void parse_whisker_name(const std::string& name, int& row, int& column, const std::string& field) {
+  if (name.size() < 2) fail(field + " must be a row letter A-E and a column number, got '" + name + "'");
+  const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
+  const char* at = std::strchr(kRowLetters, letter);
+  if (letter == '\0' || at == nullptr)
+    fail(field + " must start with a row letter A-E, got '" + name + "'");
+  row = static_cast<int>(at - kRowLetters) + 1;
+  try {
+    std::size_t used = 0;
+    column = std::stoi(name.substr(1), &used);
+    if (used != name.size() - 1 || column < 0) throw std::invalid_argument("bad");
+  } catch (const std::exception&) {
+    fail(field + " must end in a column number >= 0, got '" + name + "'");
+  }
+}
+
+WhiskerSpec on_side(WhiskerSpec spec, Side side) {
+  spec.side = side;
+  if (side == Side::left) spec.p_H_base = kMirrorX * spec.p_H_base;
+  return spec;
+}
+
 
 void validate(const WhiskerSpec& s) {
   const std::string w = "whisker " + s.name;
@@ -233,7 +186,7 @@ Morphology belli2018(Sides sides) {
     for (const BelliRow& b : kBelli) {
       WhiskerSpec s;
       s.name = b.id;
-      parse_name(s.name, s.row, s.column, "belli2018");
+      parse_whisker_name(s.name, s.row, s.column, "belli2018");
       s.arc_length = b.S * mm;
       s.curvature = b.A / mm;
       s.theta_rest = deg(b.theta);
@@ -255,74 +208,6 @@ Morphology morphology_by_name(std::string_view name, Sides sides, const char* fi
   if (name == "belli2018" || name == "belli") return belli2018(sides);
   fail(std::string(field) + " must be 'towal2011', 'belli2018' or a .csv/.json table, got '" + std::string(name) +
        "'");
-}
-
-Morphology morphology_from_csv(std::istream& in, const std::string& source) {
-  Morphology m;
-  m.source = source;
-  std::string line;
-  std::vector<std::string> header;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
-    const auto cells = split_csv_line(line);
-    if (header.empty()) {
-      header = cells;
-      continue;
-    }
-    if (cells.size() != header.size())
-      fail(source + " line " + std::to_string(line_no) + ": expected " + std::to_string(header.size()) +
-           " columns, got " + std::to_string(cells.size()));
-    std::map<std::string, std::string> fields;
-    for (std::size_t i = 0; i < cells.size(); ++i) fields[header[i]] = cells[i];
-    m.whiskers.push_back(spec_from_fields(fields, source + " line " + std::to_string(line_no)));
-  }
-  if (m.whiskers.empty()) fail(source + ": no whiskers in the table");
-  check_unique(m);
-  return m;
-}
-
-Morphology morphology_from_csv_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) fail("morphology.source: cannot open '" + path.string() + "'");
-  return morphology_from_csv(in, path.string());
-}
-
-Morphology morphology_from_json(const nlohmann::json& table, const std::string& source) {
-  const nlohmann::json& rows = table.is_object() && table.contains("whiskers") ? table.at("whiskers") : table;
-  if (!rows.is_array()) fail(source + ": expected an array of whisker rows");
-  Morphology m;
-  m.source = source;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const std::string where = source + "[" + std::to_string(i) + "]";
-    if (!rows[i].is_object()) fail(where + " must be an object");
-    std::map<std::string, std::string> fields;
-    for (const auto& [key, value] : rows[i].items())
-      fields[key] = value.is_string() ? value.get<std::string>() : value.dump();
-    m.whiskers.push_back(spec_from_fields(fields, where));
-  }
-  if (m.whiskers.empty()) fail(source + ": no whiskers in the table");
-  check_unique(m);
-  return m;
-}
-
-Morphology morphology_from_file(const std::filesystem::path& path) {
-  const std::string ext = path.extension().string();
-  if (ext == ".csv") return morphology_from_csv_file(path);
-  if (ext == ".json") {
-    std::ifstream in(path);
-    if (!in) fail("morphology.source: cannot open '" + path.string() + "'");
-    nlohmann::json j;
-    try {
-      in >> j;
-    } catch (const nlohmann::json::exception& e) {
-      fail("morphology.source: '" + path.string() + "' is not valid JSON: " + e.what());
-    }
-    return morphology_from_json(j, path.string());
-  }
-  fail("morphology.source: table '" + path.string() + "' must end in .csv or .json");
 }
 
 Morphology select_whiskers(const Morphology& m, const std::vector<std::string>& names, const char* field) {

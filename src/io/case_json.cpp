@@ -1,7 +1,6 @@
 #include "vibrissa/io/case_json.hpp"
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -251,17 +250,6 @@ json read_json_file(const std::string& path) {
   } catch (const json::parse_error& e) {
     fail(path + ": not valid JSON: " + e.what());
   }
-}
-
-void write_json_file(const std::string& path, const json& j) {
-  const std::string tmp = path + ".partial";
-  {
-    std::ofstream out(tmp);
-    if (!out) fail("cannot write " + path);
-    out << j.dump(2) << "\n";
-    if (!out) fail("cannot write " + path);
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 }  // namespace vibrissa

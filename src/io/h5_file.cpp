@@ -1,5 +1,7 @@
 #include "h5_file.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <stdexcept>
 
 namespace vibrissa::io::h5 {
@@ -12,6 +14,12 @@ Handle& Handle::operator=(Handle&& o) noexcept {
     o.id_ = H5I_INVALID_HID;
   }
   return *this;
+}
+
+hid_t Handle::release() {
+  const hid_t id = id_;
+  id_ = H5I_INVALID_HID;
+  return id;
 }
 
 void Handle::reset() {
@@ -38,6 +46,10 @@ Handle open_file_read(const std::string& path) {
   return f;
 }
 
+void close_file(Handle& file, const std::string& path) {
+  if (H5Fclose(file.release()) < 0) throw std::runtime_error(path + ": cannot finish the HDF5 file (disk full?)");
+}
+
 Handle create_group(hid_t parent, const std::string& name) {
   Handle g(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
   if (!g.valid()) throw std::runtime_error("cannot create HDF5 group '" + name + "'");
@@ -46,6 +58,18 @@ Handle create_group(hid_t parent, const std::string& name) {
 
 bool has_dataset(hid_t loc, const std::string& name) {
   return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+std::optional<std::vector<hsize_t>> dataset_dims(hid_t loc, const std::string& name) {
+  if (!has_dataset(loc, name)) return std::nullopt;
+  Handle d(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) return std::nullopt;
+  Handle space(H5Dget_space(d.get()), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) return std::nullopt;
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  return dims;
 }
 
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector<hsize_t>& dims,
@@ -69,22 +93,64 @@ std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector
   return data;
 }
 
-void write_doubles(hid_t loc, const std::string& name, const std::vector<double>& data,
-                   const std::vector<hsize_t>& dims) {
+namespace {
+
+// One dataset of `file_type` from `data` in `memory_type`, optionally chunked + deflated.
+void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t memory_type, const void* data,
+               const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
-  Handle d(H5Dcreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-           H5Dclose);
-  if (!d.valid() || H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
+  Handle plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  if (!space.valid() || !plist.valid()) throw std::runtime_error("cannot create HDF5 dataset '" + name + "'");
+  hsize_t total = 1;
+  for (hsize_t d : dims) total *= d;
+  if (options.compress && total > 4096 && !dims.empty()) {
+    // Chunks of at most ~64k values along the trailing dimensions.
+    std::vector<hsize_t> chunk(dims);
+    for (std::size_t i = 0; i + 1 < chunk.size() && total > 65536; ++i) {
+      total /= chunk[i];
+      chunk[i] = 1;
+    }
+    H5Pset_chunk(plist.get(), static_cast<int>(chunk.size()), chunk.data());
+    H5Pset_deflate(plist.get(), 4);
+  }
+  Handle d(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, plist.get(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid() || H5Dwrite(d.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
+  if (!options.units.empty()) write_string_attribute(d.get(), "units", options.units);
 }
 
-void write_bytes(hid_t loc, const std::string& name, const std::vector<unsigned char>& data) {
-  const hsize_t n = data.size();
-  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
-  Handle d(H5Dcreate2(loc, name.c_str(), H5T_STD_U8LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-           H5Dclose);
-  if (!d.valid() || H5Dwrite(d.get(), H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
-    throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
+}  // namespace
+
+void write_dataset(hid_t loc, const std::string& name, const std::vector<double>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options) {
+  write_raw(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data.data(), dims, options);
+}
+void write_dataset(hid_t loc, const std::string& name, const std::vector<float>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options) {
+  write_raw(loc, name, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, data.data(), dims, options);
+}
+void write_dataset(hid_t loc, const std::string& name, const std::vector<int>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options) {
+  write_raw(loc, name, H5T_STD_I32LE, H5T_NATIVE_INT, data.data(), dims, options);
+}
+void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int16_t>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options) {
+  write_raw(loc, name, H5T_STD_I16LE, H5T_NATIVE_INT16, data.data(), dims, options);
+}
+void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int8_t>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options) {
+  write_raw(loc, name, H5T_STD_I8LE, H5T_NATIVE_INT8, data.data(), dims, options);
+}
+
+void write_fixed_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data) {
+  std::size_t width = 1;
+  for (const auto& s : data) width = std::max(width, s.size() + 1);
+  std::vector<char> buffer(width * std::max<std::size_t>(data.size(), 1), '\0');
+  for (std::size_t i = 0; i < data.size(); ++i) std::memcpy(&buffer[i * width], data[i].data(), data[i].size());
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), width);
+  H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
+  write_raw(loc, name, type.get(), type.get(), buffer.data(), {static_cast<hsize_t>(data.size())}, {});
 }
 
 void write_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data) {

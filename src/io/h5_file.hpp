@@ -1,8 +1,10 @@
 #pragma once
-// Small RAII helpers over the HDF5 C API (private to the io layer). Numeric data are read and written as
-// native double (HDF5 converts integer datasets on read); strings as attributes.
+// The one RAII wrapper of the HDF5 C API (private to the io layer), used by trial files, trial results and
+// array outputs. Numeric data are read as native double (HDF5 converts integer datasets on read) and written
+// little-endian in the type of the vector; strings as variable- or fixed-length datasets and attributes.
 #include <hdf5.h>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +24,8 @@ class Handle {
   void reset();
   [[nodiscard]] hid_t get() const { return id_; }
   [[nodiscard]] bool valid() const { return id_ >= 0; }
+  /// Gives up ownership (the caller closes the id).
+  [[nodiscard]] hid_t release();
 
  private:
   hid_t id_ = H5I_INVALID_HID;
@@ -43,16 +47,36 @@ class QuietErrors {
 
 Handle create_file(const std::string& path);
 Handle open_file_read(const std::string& path);
+/// Closes a file being written and reports failure (a full disk shows here); `path` names it in the error.
+/// Close every group of the file first.
+void close_file(Handle& file, const std::string& path);
 Handle create_group(hid_t parent, const std::string& name);
 
 bool has_dataset(hid_t loc, const std::string& name);
+/// Dimensions of dataset `name`; nullopt if absent.
+std::optional<std::vector<hsize_t>> dataset_dims(hid_t loc, const std::string& name);
 /// Reads a dataset as doubles (row-major) and its dimensions. Throws naming `source` and `name`.
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector<hsize_t>& dims,
                                  const std::string& source);
-void write_doubles(hid_t loc, const std::string& name, const std::vector<double>& data,
-                   const std::vector<hsize_t>& dims);
-void write_bytes(hid_t loc, const std::string& name, const std::vector<unsigned char>& data);
+
+struct DatasetOptions {
+  std::string units;      ///< written as the dataset's "units" attribute unless empty
+  bool compress = false;  ///< chunk + deflate datasets of more than 4096 values (mostly-zero arrays shrink)
+};
+void write_dataset(hid_t loc, const std::string& name, const std::vector<double>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
+void write_dataset(hid_t loc, const std::string& name, const std::vector<float>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
+void write_dataset(hid_t loc, const std::string& name, const std::vector<int>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
+void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int16_t>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
+void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int8_t>& data,
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
+/// Variable-length UTF-8 strings.
 void write_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data);
+/// Fixed-length strings, NUL-padded to the longest + 1.
+void write_fixed_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data);
 
 std::optional<std::string> read_string_attribute(hid_t loc, const std::string& name, const std::string& source);
 std::optional<double> read_double_attribute(hid_t loc, const std::string& name, const std::string& source);

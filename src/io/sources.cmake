@@ -1,5 +1,9 @@
-# Sources of the io layer
+# Sources of the io layer: every file the tools read or write (case_json.cpp is listed in case_sources.cmake).
 target_sources(vibrissa PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/atomic_file.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/temporary_files.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/json_file.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/figure_files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/h5_file.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_arrays.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_csv.cpp
@@ -7,4 +11,7 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/trial_io.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_mat.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_outputs.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/trial_results.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/trial_results.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/morphology_table.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/array_config.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/array_outputs.cpp)

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
 
 namespace vibrissa::io {
@@ -219,9 +220,7 @@ trial::Trial read_trial_csv(const std::string& path) {
 }
 
 void write_trial_csv(const trial::Trial& t, const std::string& path) {
-  write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  write_text_atomically(path, [&](std::ostream& out) {
     out << std::setprecision(17);
     out << "# vibrissa-trial: 1\n# units: length=m angle=rad time=s\n";
     out << "# frame_rate_Hz: " << t.meta.frame_rate << "\n";
@@ -259,8 +258,6 @@ void write_trial_csv(const trial::Trial& t, const std::string& path) {
         for (int a = 0; a < 3; ++a) cell(t.has_shapes() && k < t.shape_W[i].size() ? t.shape_W[i][k][a] : nan_v);
       out << "\n";
     }
-    out.flush();
-    if (!out) throw std::runtime_error(path + ": write failed");
   });
 }
 

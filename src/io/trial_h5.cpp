@@ -3,6 +3,7 @@
 
 #include "h5_file.hpp"
 #include "trial_arrays.hpp"
+#include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
 
 namespace vibrissa::io {
@@ -35,11 +36,11 @@ void write_trial_h5(const trial::Trial& t, const std::string& path) {
     h5::write_double_attribute(file.get(), "format_version", 1.0);
     for (const auto& [name, a] : arrays.arrays) {
       std::vector<hsize_t> dims(a.dims.begin(), a.dims.end());
-      h5::write_doubles(file.get(), name, a.data, dims);
+      h5::write_dataset(file.get(), name, a.data, dims);
     }
     for (const auto& [name, s] : arrays.texts) h5::write_string_attribute(file.get(), name, s);
     for (const auto& [name, v] : arrays.numbers) h5::write_double_attribute(file.get(), name, v);
-    if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error(path + ": HDF5 flush failed");
+    h5::close_file(file, path);
   });
 }
 

@@ -1,7 +1,5 @@
 #include <filesystem>
 #include <stdexcept>
-#include <system_error>
-#include <unistd.h>
 
 #include "vibrissa/io/trial_io.hpp"
 
@@ -29,26 +27,6 @@ void write_trial(const trial::Trial& trial, const std::string& path) {
   if (ext == ".h5" || ext == ".hdf5") return write_trial_h5(trial, path);
   if (ext == ".mat") return write_trial_mat(trial, path);
   throw std::invalid_argument(path + ": unknown trial format '" + ext + "' (expected .csv, .h5, .hdf5 or .mat)");
-}
-
-std::string temporary_sibling(const std::string& path) {
-  const std::filesystem::path p(path);
-  // Keep the extension last: some libraries (matio) dispatch on it.
-  return (p.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + p.filename().string())).string();
-}
-
-void commit_temporary(const std::string& tmp_path, const std::string& path) {
-  std::error_code ec;
-  std::filesystem::rename(tmp_path, path, ec);
-  if (ec) {
-    discard_temporary(tmp_path);
-    throw std::runtime_error(path + ": cannot move the finished file into place: " + ec.message());
-  }
-}
-
-void discard_temporary(const std::string& tmp_path) noexcept {
-  std::error_code ec;
-  std::filesystem::remove(tmp_path, ec);
 }
 
 }  // namespace vibrissa::io

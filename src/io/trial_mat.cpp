@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "trial_arrays.hpp"
+#include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
 
 namespace vibrissa::io {

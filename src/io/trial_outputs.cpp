@@ -11,10 +11,7 @@ TrialOutputs trial_outputs(const trial::TrialRun& run) {
 }
 
 void write_trial_outputs(const TrialOutputs& outputs, const std::filesystem::path& dir) {
-  std::filesystem::create_directories(dir);
-  write_result_table_csv(outputs.table, (dir / "frames.csv").string());
-  write_result_table_h5(outputs.table, (dir / "frames.h5").string());
-  write_json(outputs.summary, (dir / "summary.json").string());
+  write_trial_outputs(outputs.table, outputs.summary, dir);
 }
 
 }  // namespace vibrissa::io

@@ -1,7 +1,6 @@
 #include "vibrissa/io/trial_results.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <map>
 #include <numbers>
@@ -10,6 +9,9 @@
 #include "h5_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/trial/trial_run.hpp"
+#include "vibrissa/io/atomic_file.hpp"
+#include "vibrissa/io/figure_files.hpp"
+#include "vibrissa/io/json_file.hpp"
 
 namespace vibrissa::io {
 
@@ -122,41 +124,49 @@ ResultTable result_table(const PipelineResult& r, const TrialAnalysis& a) {
   return t;
 }
 
-void write_result_table_csv(const ResultTable& t, const std::string& path) {
-  write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error(path + ": cannot open for writing");
-    out << std::setprecision(12);
-    bool first = true;
-    for (const auto& c : t.numeric) out << (first ? "" : ",") << c.first, first = false;
-    for (const auto& c : t.text) out << "," << c.first;
-    out << "\n";
-    const std::size_t n = t.numeric.empty() ? 0 : t.numeric.front().second.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t k = 0; k < t.numeric.size(); ++k) {
-        if (k) out << ',';
-        const double v = t.numeric[k].second[i];
-        if (std::isfinite(v)) out << v;
-        else out << "nan";
-      }
-      for (const auto& c : t.text) out << ',' << c.second[i];
-      out << '\n';
+namespace {
+
+void print_result_table_csv(const ResultTable& t, std::ostream& out) {
+  out << std::setprecision(12);
+  bool first = true;
+  for (const auto& c : t.numeric) out << (first ? "" : ",") << c.first, first = false;
+  for (const auto& c : t.text) out << "," << c.first;
+  out << "\n";
+  const std::size_t n = t.numeric.empty() ? 0 : t.numeric.front().second.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < t.numeric.size(); ++k) {
+      if (k) out << ',';
+      const double v = t.numeric[k].second[i];
+      if (std::isfinite(v)) out << v;
+      else out << "nan";
     }
-    out.flush();
-    if (!out) throw std::runtime_error(path + ": write failed");
-  });
+    for (const auto& c : t.text) out << ',' << c.second[i];
+    out << '\n';
+  }
 }
 
-void write_result_table_h5(const ResultTable& t, const std::string& path) {
-  write_atomically(path, [&](const std::string& tmp) {
-    h5::QuietErrors quiet;
-    h5::Handle file = h5::create_file(tmp);
+void create_result_table_h5(const ResultTable& t, const std::string& path) {
+  h5::QuietErrors quiet;
+  h5::Handle file = h5::create_file(path);
+  {
     h5::Handle g = h5::create_group(file.get(), "frames");
-    for (const auto& [name, v] : t.numeric) h5::write_doubles(g.get(), name, v, {static_cast<hsize_t>(v.size())});
+    for (const auto& [name, v] : t.numeric) h5::write_dataset(g.get(), name, v, {static_cast<hsize_t>(v.size())});
     for (const auto& [name, v] : t.text) h5::write_strings(g.get(), name, v);
-    h5::write_string_attribute(file.get(), "format", "vibrissa-trial-results");
-    if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error(path + ": HDF5 flush failed");
-  });
+  }
+  h5::write_string_attribute(file.get(), "format", "vibrissa-trial-results");
+  h5::close_file(file, path);
+}
+
+}  // namespace
+
+void write_trial_outputs(const ResultTable& table, const nlohmann::json& summary, const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  StagedFiles files;
+  files.stage_text(dir / "frames.csv", [&](std::ostream& out) { print_result_table_csv(table, out); });
+  files.stage(dir / "frames.h5", [&](const std::string& tmp) { create_result_table_h5(table, tmp); });
+  stage_json_file(files, dir / "summary.json", summary);  // last: its presence marks a finished run
+  remove_figures(dir, kTrialFigures);
+  files.commit();
 }
 
 nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
@@ -212,16 +222,6 @@ nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
                              {"edge", num(a.shape_error.edge_mean)},
                              {"frictional_edge", num(a.shape_error.frictional_mean)}};
   return j;
-}
-
-void write_json(const nlohmann::json& j, const std::string& path) {
-  write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error(path + ": cannot open for writing");
-    out << j.dump(2) << "\n";
-    out.flush();
-    if (!out) throw std::runtime_error(path + ": write failed");
-  });
 }
 
 }  // namespace vibrissa::io

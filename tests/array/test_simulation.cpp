@@ -1,17 +1,15 @@
 // Full-array simulation: contact onset from the sweep, push-past and release, mirror symmetry, invariance to
-// a rigid motion of head + object, eq. (7), outputs, and config errors that name the field.
+// a rigid motion of head + object, eq. (7), and config errors that name the field.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <numbers>
 #include <set>
 
-#include "vibrissa/array/config.hpp"
 #include "vibrissa/array/error_bound.hpp"
-#include "vibrissa/array/output.hpp"
 #include "vibrissa/array/sweep.hpp"
 #include "vibrissa/core/pose.hpp"
+#include "vibrissa/io/array_config.hpp"
 
 using namespace vibrissa;
 using namespace vibrissa::array;
@@ -21,7 +19,7 @@ namespace {
 double rad(double d) { return d * std::numbers::pi / 180.0; }
 
 json base_config() {
-  json j = default_config_json();
+  json j = io::default_array_config_json();
   j["output"]["render_count"] = 0;
   return j;
 }
@@ -40,7 +38,7 @@ int first_frame(const ArrayResult& r, std::size_t w, ContactState s, std::size_t
 
 void expect_config_error(const json& j, const std::string& field) {
   try {
-    config_from_json(j);
+    io::array_config_from_json(j);
     FAIL() << "no error for " << field;
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
@@ -49,7 +47,7 @@ void expect_config_error(const json& j, const std::string& field) {
 }  // namespace
 
 TEST(ArraySimulation, DefaultSceneTouchesSeveralWhiskersAndSomePushPast) {
-  const ArrayResult r = simulate_array(config_from_json(base_config()));
+  const ArrayResult r = simulate_array(io::array_config_from_json(base_config()));
   const auto summary = summarize_pitches(r);
   ASSERT_EQ(summary.size(), 1u);
   EXPECT_GE(summary[0].whiskers_touching, 5u);
@@ -62,7 +60,7 @@ TEST(ArraySimulation, ContactBeginsInTheFrameInWhichTheRestWhiskerCrossesThePeg)
   json j = base_config();
   j["morphology"]["whiskers"] = {"C2"};
   j["time"]["frames"] = 2000;
-  const SimulationConfig c = config_from_json(j);
+  const SimulationConfig c = io::array_config_from_json(j);
   const ArrayResult r = simulate_array(c);
   const int on = first_frame(r, 0, ContactState::contact);
   ASSERT_GT(on, 0);
@@ -99,7 +97,7 @@ TEST(ArraySimulation, ContactBeginsInTheFrameInWhichTheRestWhiskerCrossesThePeg)
   EXPECT_LT(r.FT[k], 1e-6);
   // A coarser time grid finds the onset within one of its frame steps.
   j["time"]["frames"] = 200;
-  const ArrayResult coarse = simulate_array(config_from_json(j));
+  const ArrayResult coarse = simulate_array(io::array_config_from_json(j));
   const int on_coarse = first_frame(coarse, 0, ContactState::contact);
   ASSERT_GT(on_coarse, 0);
   EXPECT_LE(coarse.times[static_cast<std::size_t>(on_coarse - 1)], r.times[static_cast<std::size_t>(on)]);
@@ -110,7 +108,7 @@ TEST(ArraySimulation, PushPastThenReleaseOnRetraction) {
   json j = base_config();
   j["time"]["end_s"] = 0.125;  // a whole whisk: protraction then retraction
   j["time"]["frames"] = 500;
-  const ArrayResult r = simulate_array(config_from_json(j));
+  const ArrayResult r = simulate_array(io::array_config_from_json(j));
   int pushed_whiskers = 0;
   for (std::size_t w = 0; w < r.n_whiskers; ++w) {
     const int pp = first_frame(r, w, ContactState::pushed_past);
@@ -134,7 +132,7 @@ TEST(ArraySimulation, LeftAndRightSignalsMirrorInASymmetricScene) {
   j["morphology"]["whiskers"] = {"B2", "C1", "C2", "C3", "D1", "D2"};
   j["objects"] = json::array({json{{"type", "peg"}, {"point_mm", {20, -8, -3}}},
                               json{{"type", "peg"}, {"point_mm", {-20, -8, -3}}}});
-  const ArrayResult r = simulate_array(config_from_json(j));
+  const ArrayResult r = simulate_array(io::array_config_from_json(j));
   int touched = 0;
   for (const std::string name : {"B2", "C1", "C2", "C3", "D1", "D2"}) {
     const std::size_t R = whisker_index(r, name + "R"), L = whisker_index(r, name + "L");
@@ -174,7 +172,7 @@ TEST(ArraySimulation, RigidMotionOfHeadAndObjectTogetherChangesNothingButTheFram
   const Eigen::Vector3d d = R * Eigen::Vector3d(0.1, 0.2, 1.0);
   b["objects"][0]["point_mm"] = {p.x() * 1e3, p.y() * 1e3, p.z() * 1e3};
   b["objects"][0]["direction"] = {d.x(), d.y(), d.z()};
-  const ArrayResult ra = simulate_array(config_from_json(a)), rb = simulate_array(config_from_json(b));
+  const ArrayResult ra = simulate_array(io::array_config_from_json(a)), rb = simulate_array(io::array_config_from_json(b));
   int contacts = 0;
   for (std::size_t w = 0; w < ra.n_whiskers; ++w)
     for (std::size_t f = 0; f < ra.n_frames; ++f) {
@@ -195,12 +193,12 @@ TEST(ArraySimulation, HeadPitchSweepChangesTheSignalsButAHeadFixedPegDoesNot) {
   json j = base_config();
   j["morphology"]["whiskers"] = {"C1", "C2", "D1", "D2"};
   j["head"]["pitches_deg"] = {-10, 0, 15};
-  const ArrayResult world = simulate_array(config_from_json(j));
+  const ArrayResult world = simulate_array(io::array_config_from_json(j));
   const auto s = summarize_pitches(world);
   ASSERT_EQ(s.size(), 3u);
   EXPECT_NE(s[0].peak_MB, s[2].peak_MB);
   j["objects"][0]["frame"] = "head";
-  const ArrayResult head = simulate_array(config_from_json(j));
+  const ArrayResult head = simulate_array(io::array_config_from_json(j));
   const auto h = summarize_pitches(head);
   EXPECT_NEAR(h[0].peak_MB, h[2].peak_MB, 1e-9 * h[0].peak_MB);
 }
@@ -212,7 +210,7 @@ TEST(ArraySimulation, PrismContactIsWithWhicheverEdgeTheWhiskerReaches) {
                                    {"vertices_mm", {{20, -8, -15}, {26, -10, -15}, {24, -2, -15}}},
                                    {"axis", {0, 0, 1}},
                                    {"length_mm", 30}}});
-  const ArrayResult r = simulate_array(config_from_json(j));
+  const ArrayResult r = simulate_array(io::array_config_from_json(j));
   std::set<int> edges;
   for (std::size_t i = 0; i < r.state.size(); ++i)
     if (r.state[i] == static_cast<std::int8_t>(ContactState::contact)) edges.insert(r.edge[i]);
@@ -263,22 +261,4 @@ TEST(ArrayConfig, InvalidConfigsNameTheField) {
   j = base_config();
   j["morphology"]["source"] = "missing_table.csv";
   expect_config_error(j, "morphology.source");
-}
-
-TEST(ArrayOutput, Hdf5IsLaidOutPitchWhiskerFrame) {
-  json j = base_config();
-  j["morphology"]["whiskers"] = {"C1", "C2", "D1"};
-  j["head"]["pitches_deg"] = {0, 10};
-  j["time"]["frames"] = 40;
-  j["output"]["render_count"] = 5;
-  const SimulationConfig c = config_from_json(j);
-  const ArrayResult r = simulate_array(c);
-  const auto path = std::filesystem::temp_directory_path() / "vibrissa_array_test.h5";
-  write_array_h5(r, c, path);
-  using Dims = std::vector<std::size_t>;
-  EXPECT_EQ(h5_dataset_shape(path, "MB"), (Dims{2, 3, 40}));
-  EXPECT_EQ(h5_dataset_shape(path, "force_B"), (Dims{2, 3, 40, 3}));
-  EXPECT_EQ(h5_dataset_shape(path, "render/deflected"), (Dims{5, 3, 101, 3}));
-  EXPECT_THROW(h5_dataset_shape(path, "nope"), std::runtime_error);
-  std::filesystem::remove(path);
 }

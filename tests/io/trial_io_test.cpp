@@ -198,16 +198,3 @@ TEST(TrialIo, BadH5AndMatFilesNameFileRowAndColumn) {
     EXPECT_NE(msg.find(std::string("nanrow") + ext + ": row 4, column 'phi'"), std::string::npos) << msg;
   }
 }
-
-TEST(TrialIo, FailedWriteLeavesNoFileBehind) {
-  const fs::path d = temp_dir() / "atomic";
-  fs::create_directories(d);
-  const std::string path = (d / "out.csv").string();
-  EXPECT_THROW(vibrissa::io::write_atomically(path, [](const std::string& tmp) {
-                 std::ofstream(tmp) << "partial";
-                 throw std::runtime_error("interrupted");
-               }),
-               std::runtime_error);
-  EXPECT_FALSE(fs::exists(path));
-  EXPECT_TRUE(fs::is_empty(d)) << "the temporary file must be removed";
-}

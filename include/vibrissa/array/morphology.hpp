@@ -6,14 +6,11 @@
 // Angles of a whisker are the sources' Euler angles (theta, phi, zeta) of the right-side equivalent; the
 // whisker is drawn in its own frame as (x, 0, -A x^2) and placed by Rz(theta - 90°)·Ry(-phi)·Rx(zeta)
 // (data sheet §2). The left side is the mirror image (x -> -x) of the right. See docs/array.md.
-#include <filesystem>
-#include <istream>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
-#include <nlohmann/json_fwd.hpp>
 
 #include "vibrissa/core/pose.hpp"
 #include "vibrissa/core/whisker.hpp"
@@ -65,15 +62,13 @@ Morphology belli2018(Sides sides = Sides::right);
 Morphology morphology_by_name(std::string_view name, Sides sides = Sides::right,
                               const char* field = "morphology.source");
 
-/// User array from a CSV table with the header
-///   name,side,S_mm,A_per_mm,theta_deg,phi_deg,zeta_deg,base_x_mm,base_y_mm,base_z_mm
-/// plus optional columns base_radius_um, taper_ratio, youngs_modulus_GPa, poisson_ratio. Every row describes
-/// the right-side equivalent; side = left mirrors it. Name = row letter A-E followed by the column number.
-Morphology morphology_from_csv(std::istream& in, const std::string& source = "csv");
-Morphology morphology_from_csv_file(const std::filesystem::path& path);
-/// The same columns as a JSON array of objects (or {"whiskers": [...]}).
-Morphology morphology_from_json(const nlohmann::json& table, const std::string& source = "json");
-Morphology morphology_from_file(const std::filesystem::path& path);  ///< by extension: .csv or .json
+/// User tables (CSV/JSON) are read by io/morphology_table.hpp.
+
+/// "C2" -> row 3 (A..E = 1..5), column 2; throws std::invalid_argument naming `field`.
+void parse_whisker_name(const std::string& name, int& row, int& column, const std::string& field);
+/// A right-side spec placed on `side`: the base point is mirrored (x -> -x) for the left; the angles stay
+/// those of the right-side equivalent.
+WhiskerSpec on_side(WhiskerSpec spec, Side side);
 
 /// Keep only the named whiskers (name without side, e.g. "C2", or with it, "C2R"); throws
 /// std::invalid_argument naming `field` and the unknown name.

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vibrissa/core/whisker.hpp"
+#include "vibrissa/io/json_file.hpp"
 #include "vibrissa/solve/options.hpp"
 #include "vibrissa/solve/solution.hpp"
 
@@ -58,7 +59,7 @@ nlohmann::json to_json(const Eigen::Vector3d& v);
 
 /// Reads and parses a JSON file; errors name the file.
 nlohmann::json read_json_file(const std::string& path);
-/// Writes atomically (temporary file + rename), so a failed run never leaves a partial result.
-void write_json_file(const std::string& path, const nlohmann::json& j);
+/// Results are written with io::write_json_file (atomic: temporary file + rename).
+using io::write_json_file;
 
 }  // namespace vibrissa

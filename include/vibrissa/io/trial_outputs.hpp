@@ -18,8 +18,8 @@ struct TrialOutputs {
 
 TrialOutputs trial_outputs(const trial::TrialRun& run);
 
-/// Creates `dir` and writes frames.csv, frames.h5 and, last (its presence marks a finished run),
-/// summary.json; each file atomically.
+/// Creates `dir` and writes frames.csv, frames.h5 and summary.json, staged and renamed together
+/// (trial_results.hpp, write_trial_outputs).
 void write_trial_outputs(const TrialOutputs& outputs, const std::filesystem::path& dir);
 
 }  // namespace vibrissa::io

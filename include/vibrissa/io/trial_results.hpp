@@ -1,6 +1,7 @@
 #pragma once
 // Output of `vibrissa trial` (docs/trials.md, "Outputs"): the per-frame table as CSV and HDF5 (same
-// columns), and summary.json with every number of the analyses. All writes are atomic (temp + rename).
+// columns), and summary.json with every number of the analyses. All writes are atomic (io/atomic_file.hpp).
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,10 +23,12 @@ struct ResultTable {
 /// then mu, mu_outlier, z_error, z_error_eq6, z_error_eq7, kinematic_height, tracked_height.
 ResultTable result_table(const trial::PipelineResult& result, const trial::TrialAnalysis& analysis);
 
-void write_result_table_csv(const ResultTable& table, const std::string& path);
-void write_result_table_h5(const ResultTable& table, const std::string& path);
-
 nlohmann::json summary_json(const trial::PipelineResult& result, const trial::TrialAnalysis& analysis);
-void write_json(const nlohmann::json& json, const std::string& path);
+
+/// Everything `vibrissa trial` writes into `dir` (created if missing): frames.csv and frames.h5 (the table)
+/// and summary.json, renamed into place together once all are written (summary.json last: its presence marks
+/// a finished run). The figures/ folder of an older run is removed: figures, if wanted, are drawn afterwards
+/// from the new files, so outputs never mix runs.
+void write_trial_outputs(const ResultTable& table, const nlohmann::json& summary, const std::filesystem::path& dir);
 
 }  // namespace vibrissa::io

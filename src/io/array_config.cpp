@@ -1,4 +1,4 @@
-#include "vibrissa/array/config.hpp"
+#include "vibrissa/io/array_config.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,13 @@
 #include <limits>
 #include <set>
 
-#include "array_util.hpp"
+#include "../array/array_util.hpp"  // the array layer's message and unit helpers
+#include "vibrissa/io/morphology_table.hpp"
 
-namespace vibrissa::array {
+namespace vibrissa::io {
+
+using namespace vibrissa::array;
+
 namespace {
 
 using nlohmann::json;
@@ -134,7 +138,7 @@ SceneObject object_from(const json& o, const std::string& where) {
 
 }  // namespace
 
-nlohmann::json default_config_json() {
+nlohmann::json default_array_config_json() {
   return json::parse(R"({
     "morphology": {"source": "towal2011", "sides": "right"},
     "whisking": {"amplitude_deg": 30, "set_point_deg": 10, "frequency_Hz": 8, "slopes": "knutsen2008"},
@@ -146,7 +150,7 @@ nlohmann::json default_config_json() {
   })");
 }
 
-json read_config_json(const std::filesystem::path& path) {
+json read_array_config_json(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) fail("config: cannot open '" + path.string() + "'");
   try {
@@ -156,11 +160,11 @@ json read_config_json(const std::filesystem::path& path) {
   }
 }
 
-SimulationConfig load_config(const std::filesystem::path& path) {
-  return config_from_json(read_config_json(path), path.parent_path());
+SimulationConfig load_array_config(const std::filesystem::path& path) {
+  return array_config_from_json(read_array_config_json(path), path.parent_path());
 }
 
-SimulationConfig config_from_json(const json& j, const std::filesystem::path& base_dir) {
+SimulationConfig array_config_from_json(const json& j, const std::filesystem::path& base_dir) {
   only_keys(j, "", {"morphology", "whisking", "time", "head", "objects", "solver", "output", "threads", "comment"});
   SimulationConfig c;
 
@@ -172,7 +176,7 @@ SimulationConfig config_from_json(const json& j, const std::filesystem::path& ba
   if (source.size() > 4 && (source.ends_with(".csv") || source.ends_with(".json"))) {
     const std::filesystem::path p = std::filesystem::path(source).is_absolute() ? std::filesystem::path(source)
                                                                               : base_dir / source;
-    c.morphology = morphology_from_file(p);
+    c.morphology = read_morphology_table(p);
   } else {
     c.morphology = morphology_by_name(source, sides);
   }
@@ -302,4 +306,4 @@ SimulationConfig config_from_json(const json& j, const std::filesystem::path& ba
   return c;
 }
 
-}  // namespace vibrissa::array
+}  // namespace vibrissa::io
