@@ -10,6 +10,7 @@
 // series runs sequentially and series run in parallel. Without warm starts every frame is independent and
 // frames run in parallel. Results do not depend on the number of threads.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -20,6 +21,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "interruptible.hpp"
 #include "vibrissa/contact/tracker.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
@@ -309,7 +311,7 @@ struct SeriesTracking {
 
 template <class SolveOne>
 py::dict run_batch(const Layout& L, const Whiskers& ws, const SeriesTracking* tracked, bool shapes,
-                   const py::object& threads, SolveOne&& solve_one) {
+                   const py::object& threads, const py::object& progress, SolveOne&& solve_one) {
   py::ssize_t nodes = 0;
   if (shapes) {
     nodes = ws.list.front()->links() + 1;
@@ -326,34 +328,46 @@ py::dict run_batch(const Layout& L, const Whiskers& ws, const SeriesTracking* tr
   std::string error;
   bool error_is_value = true;
   py::ssize_t error_item = items;
-  {
-    py::gil_scoped_release release;
+  // On a worker thread with the GIL released; Ctrl-C or an exception from `progress` cancels between frames.
+  run_interruptible(
+      [&](const RunControl& control) {
+        ProgressCounter counter(control, static_cast<std::size_t>(S * F));
+        std::atomic<bool> cancelled{false};
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-    for (py::ssize_t item = 0; item < items; ++item) {
-      try {
-        if (tracked) {
-          const py::ssize_t s = item;
-          ContactTracker tracker(ws.of(s), tracked->options);
-          Placement X;
-          std::optional<EdgeSegment> segment;
-          for (py::ssize_t f = 0; f < F; ++f) {
-            TrackedInput input;
-            tracked->frame_input(s, f, X, segment, input);
-            store(raw, s * F + f, tracker.step_tracked(X, segment ? &*segment : nullptr, input).solution);
-          }
-        } else {
-          store(raw, item, solve_one(item / F, item % F));
-        }
-      } catch (const std::exception& e) {
+        for (py::ssize_t item = 0; item < items; ++item) {
+          try {
+            if (tracked) {
+              const py::ssize_t s = item;
+              ContactTracker tracker(ws.of(s), tracked->options);
+              Placement X;
+              std::optional<EdgeSegment> segment;
+              for (py::ssize_t f = 0; f < F; ++f) {
+                counter.check();
+                TrackedInput input;
+                tracked->frame_input(s, f, X, segment, input);
+                store(raw, s * F + f, tracker.step_tracked(X, segment ? &*segment : nullptr, input).solution);
+                counter.advance();
+              }
+            } else {
+              counter.check();
+              store(raw, item, solve_one(item / F, item % F));
+              counter.advance();
+            }
+          } catch (const Cancelled&) {
+            cancelled = true;
+          } catch (const std::exception& e) {
 #pragma omp critical(vibrissa_batch_error)
-        if (item < error_item) {  // report the first failing item, whatever the thread order
-          error_item = item;
-          error = e.what();
-          error_is_value = dynamic_cast<const std::invalid_argument*>(&e) != nullptr;
+            if (item < error_item) {  // report the first failing item, whatever the thread order
+              error_item = item;
+              error = e.what();
+              error_is_value = dynamic_cast<const std::invalid_argument*>(&e) != nullptr;
+            }
+          }
         }
-      }
-    }
-  }
+        if (cancelled) throw Cancelled();
+        return 0;
+      },
+      progress);
   if (error_item < items) {
     const std::string where = tracked ? "series " + std::to_string(error_item)
                                       : "series " + std::to_string(error_item / F) + ", frame " +
@@ -379,7 +393,7 @@ void bind_batch(py::module_& m) {
       "solve_force_batch",
       [](const py::object& whisker, const py::object& force, const py::object& arc_length, const py::object& angle,
          const py::object& pose_base, const py::object& pose_angles, const py::object& options, bool shapes,
-         const py::object& threads) {
+         const py::object& threads, const py::object& progress) {
         const Whiskers ws = whiskers_arg(whisker);
         const Field fF = scalar_field(force, "force"), fs = scalar_field(arc_length, "arc_length"),
                     fa = scalar_field(angle, "angle");
@@ -387,7 +401,7 @@ void bind_batch(py::module_& m) {
         const Layout L = layout_of(ws, {&fF, &fs, &fa, &poses.base, &poses.angles});
         SolveOptions o = options_arg(options);
         o.compute_shape = shapes;
-        return run_batch(L, ws, nullptr, shapes, threads, [&](py::ssize_t s, py::ssize_t f) {
+        return run_batch(L, ws, nullptr, shapes, threads, progress, [&](py::ssize_t s, py::ssize_t f) {
           const Whisker& w = ws.of(s);
           const double ang = fa.present() ? fa.scalar(s, f) : 0.0;
           return solve_force(w, poses.at(w, s, f), fF.scalar(s, f), fs.scalar(s, f), ang, o);
@@ -395,13 +409,14 @@ void bind_batch(py::module_& m) {
       },
       py::arg("whisker"), py::arg("force"), py::arg("arc_length"), py::arg("angle") = py::none(), py::kw_only(),
       py::arg("pose_base") = py::none(), py::arg("pose_angles") = py::none(), py::arg("options") = py::none(),
-      py::arg("shapes") = false, py::arg("threads") = py::none());
+      py::arg("shapes") = false, py::arg("threads") = py::none(), py::arg("progress") = py::none());
 
   m.def(
       "solve_point_batch",
       [](const py::object& whisker, const py::object& points, const py::object& arc_length_hint,
          const py::object& edge_direction, const py::object& pose_base, const py::object& pose_angles,
-         const py::object& options, bool warm_start, bool shapes, const py::object& threads) {
+         const py::object& options, bool warm_start, bool shapes, const py::object& threads,
+         const py::object& progress) {
         const Whiskers ws = whiskers_arg(whisker);
         const Field fp = vector_field(points, "points");
         if (!fp.present()) throw py::value_error("points must be given");
@@ -422,7 +437,8 @@ void bind_batch(py::module_& m) {
                                   in.p_W_contact = fp.vec(s, f);
                                   in.arc_length_hint = hint_at(s, f);
                                 }};
-        return run_batch(L, ws, warm_start ? &tracking : nullptr, shapes, threads, [&](py::ssize_t s, py::ssize_t f) {
+        return run_batch(L, ws, warm_start ? &tracking : nullptr, shapes, threads, progress,
+                         [&](py::ssize_t s, py::ssize_t f) {
           const Whisker& w = ws.of(s);
           const std::optional<Eigen::Vector3d> dir =
               fd.present() ? std::optional<Eigen::Vector3d>(fd.vec(s, f)) : std::nullopt;
@@ -432,14 +448,14 @@ void bind_batch(py::module_& m) {
       py::arg("whisker"), py::arg("points"), py::kw_only(), py::arg("arc_length_hint") = py::none(),
       py::arg("edge_direction") = py::none(), py::arg("pose_base") = py::none(), py::arg("pose_angles") = py::none(),
       py::arg("options") = py::none(), py::arg("warm_start") = true, py::arg("shapes") = false,
-      py::arg("threads") = py::none());
+      py::arg("threads") = py::none(), py::arg("progress") = py::none());
 
   m.def(
       "solve_edge_batch",
       [](const py::object& whisker, const py::object& edge_points, const py::object& edge_directions,
          const py::object& arc_length_hint, const py::object& approach, const py::object& pose_base,
          const py::object& pose_angles, const py::object& options, bool warm_start, bool shapes,
-         const py::object& threads) {
+         const py::object& threads, const py::object& progress) {
         const Whiskers ws = whiskers_arg(whisker);
         const Field fp = vector_field(edge_points, "edge_points");
         if (!fp.present()) throw py::value_error("edge_points must be given");
@@ -464,7 +480,8 @@ void bind_batch(py::module_& m) {
                                   in.arc_length_hint = hint_at(s, f);
                                   in.approach_W = approach_at(s, f);
                                 }};
-        return run_batch(L, ws, warm_start ? &tracking : nullptr, shapes, threads, [&](py::ssize_t s, py::ssize_t f) {
+        return run_batch(L, ws, warm_start ? &tracking : nullptr, shapes, threads, progress,
+                         [&](py::ssize_t s, py::ssize_t f) {
           const Whisker& w = ws.of(s);
           return solve_edge(w, poses.at(w, s, f), edge_at(fp, fd, s, f)->line(), hint_at(s, f), o, nullptr,
                             approach_at(s, f));
@@ -473,13 +490,14 @@ void bind_batch(py::module_& m) {
       py::arg("whisker"), py::arg("edge_points"), py::arg("edge_directions") = py::none(), py::kw_only(),
       py::arg("arc_length_hint") = py::none(), py::arg("approach") = py::none(), py::arg("pose_base") = py::none(),
       py::arg("pose_angles") = py::none(), py::arg("options") = py::none(), py::arg("warm_start") = true,
-      py::arg("shapes") = false, py::arg("threads") = py::none());
+      py::arg("shapes") = false, py::arg("threads") = py::none(), py::arg("progress") = py::none());
 
   m.def(
       "solve_frictional_edge_batch",
       [](const py::object& whisker, const py::object& edge_points, const py::object& edge_directions, double mu,
          const py::object& initial_contact, const py::object& approach, const py::object& pose_base,
-         const py::object& pose_angles, const py::object& options, bool shapes, const py::object& threads) {
+         const py::object& pose_angles, const py::object& options, bool shapes, const py::object& threads,
+         const py::object& progress) {
         const Whiskers ws = whiskers_arg(whisker);
         const Field fp = vector_field(edge_points, "edge_points");
         if (!fp.present()) throw py::value_error("edge_points must be given");
@@ -514,12 +532,13 @@ void bind_batch(py::module_& m) {
                                   }
                                 }};
         // Contact history lives per series: always tracked, series in parallel.
-        return run_batch(L, ws, &tracking, shapes, threads, [](py::ssize_t, py::ssize_t) { return Solution{}; });
+        return run_batch(L, ws, &tracking, shapes, threads, progress,
+                         [](py::ssize_t, py::ssize_t) { return Solution{}; });
       },
       py::arg("whisker"), py::arg("edge_points"), py::arg("edge_directions") = py::none(), py::arg("mu") = 0.0,
       py::kw_only(), py::arg("initial_contact") = py::none(), py::arg("approach") = py::none(),
       py::arg("pose_base") = py::none(), py::arg("pose_angles") = py::none(), py::arg("options") = py::none(),
-      py::arg("shapes") = false, py::arg("threads") = py::none());
+      py::arg("shapes") = false, py::arg("threads") = py::none(), py::arg("progress") = py::none());
 
   m.def("max_threads", [] { return omp_get_max_threads(); },
         "Threads a batch uses by default (OpenMP's limit; set OMP_NUM_THREADS to change it).");

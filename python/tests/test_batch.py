@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 import vibrissa
-from vibrissa import Edge, Pose, SolveOptions, Status
+from interrupting import interrupt
+from vibrissa import Edge, Pose, SolveOptions, Status, WhiskerProperties
 
 FIELDS = ("force_magnitude", "arc_length", "angle", "contact_point", "force", "moment", "residual")
 
@@ -156,3 +157,22 @@ def test_result_conveniences(small_whisker, peg_track):
     assert set(d["whisker_frame"]) == {"force", "moment", "FT", "MB", "FD", "MD"}
     assert len(batch) == 12 and "12" in repr(batch)
     assert batch.state.shape == (12, 4) and batch.status.dtype == np.int32
+
+
+@pytest.mark.parametrize("with_progress", [False, True])
+def test_ctrl_c_stops_a_long_batch_within_half_a_second(with_progress):
+    w = vibrissa.Whisker.from_parabola(0.03, 20.0, properties=WhiskerProperties(links=200))
+    f = np.linspace(0.0, 1.0, 40_000)
+    points = np.column_stack([0.02 - 0.002 * f, 0.004 + 0.002 * f, 0.001 * f])  # seconds of work on one core
+    call = lambda p: vibrissa.solve_point_batch(w, points, warm_start=False, threads=1, progress=p)  # noqa: E731
+    assert interrupt(call, 0.3, with_progress) < 0.5
+
+
+def test_batch_progress_counts_frames_up_to_the_total(small_whisker):
+    F = 2000
+    points = np.column_stack([np.full(F, 0.018), np.linspace(0.003, 0.006, F), np.zeros(F)])
+    seen = []
+    batch = vibrissa.solve_edge_batch(small_whisker, points, progress=lambda d, t: seen.append((d, t)))
+    assert batch.converged.sum() > F // 2
+    assert seen and seen[-1] == (F, F)
+    assert all(a[0] < b[0] for a, b in zip(seen, seen[1:]))

@@ -2,16 +2,13 @@
 Same inputs as the CLI give bit-identical numbers; progress; Ctrl-C; errors name the field."""
 
 import json
-import os
-import signal
 import subprocess
-import threading
-import time
 
 import numpy as np
 import pytest
 
 import vibrissa
+from interrupting import interrupt
 
 h5py = pytest.importorskip("h5py")
 
@@ -223,49 +220,6 @@ def test_an_exception_in_progress_stops_the_call():
     with pytest.raises(RuntimeError, match="stop here"):
         vibrissa.synthesize_trial(duration=20.0, progress=progress)
     assert len(calls) == 1 and calls[0] < 20_000
-
-
-def interrupt(call, delay, with_progress):
-    """Runs `call(progress)` and sends SIGINT to this process `delay` s after the call started (with_progress:
-    after its first progress report, and the report seen then must be short of the total). Returns the
-    seconds from the moment the signal was due to the KeyboardInterrupt (a call holding the GIL would also
-    hold up the timer thread, so the signal's own time stamp is not enough). Without a progress callback no
-    Python code runs during the call, so only the binding's own signal check can raise it."""
-    sent, seen, armed = {}, [], []
-
-    def send():
-        sent["seen"] = list(seen)
-        sent["time"] = time.perf_counter()
-        os.kill(os.getpid(), signal.SIGINT)
-
-    timer = threading.Timer(delay, send)
-
-    def progress(done, total):
-        seen.append((done, total))
-        if len(seen) == 1:
-            armed.append(time.perf_counter())
-            timer.start()
-
-    try:
-        if not with_progress:
-            armed.append(time.perf_counter())
-            timer.start()
-        call(progress if with_progress else None)
-    except KeyboardInterrupt:
-        latency = time.perf_counter() - (armed[0] + delay)
-        assert sent["time"] - armed[0] >= delay
-        timer.join()
-        if with_progress:
-            done, total = sent["seen"][-1]
-            assert done < total, "the call must still have been running when the signal came"
-        return latency
-    try:
-        timer.cancel()
-        timer.join()
-        time.perf_counter()  # a signal sent meanwhile is raised here
-    except KeyboardInterrupt:
-        pass
-    pytest.fail("the call ended before the signal: make it longer")
 
 
 @pytest.mark.parametrize("with_progress", [False, True])

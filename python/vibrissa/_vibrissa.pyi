@@ -1,7 +1,7 @@
 """Type stubs of the compiled core (python/src/*.cpp). SI units: m, N, N·m, Pa, rad."""
 
 import enum
-from typing import Any, ClassVar, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, ClassVar, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -247,27 +247,29 @@ def solve_frictional_edge(whisker: Whisker, edge: Edge, mu: float, previous_cont
 def nearest_rest_point(whisker: Whisker, edge: Edge, *, pose: Optional[Pose] = None) -> dict[str, Any]: ...
 
 WhiskerArg = Union[Whisker, Sequence[Whisker]]
+Progress = Callable[[int, int], object]
 
 def solve_force_batch(whisker: WhiskerArg, force: ArrayLike, arc_length: ArrayLike,
                       angle: Optional[ArrayLike] = None, *, pose_base: Optional[ArrayLike] = None,
                       pose_angles: Optional[ArrayLike] = None, options: Optional[SolveOptions] = None,
-                      shapes: bool = False, threads: Optional[int] = None) -> dict[str, Any]: ...
+                      shapes: bool = False, threads: Optional[int] = None,
+                      progress: Optional[Progress] = None) -> dict[str, Any]: ...
 def solve_point_batch(whisker: WhiskerArg, points: ArrayLike, *, arc_length_hint: Optional[ArrayLike] = None,
                       edge_direction: Optional[ArrayLike] = None, pose_base: Optional[ArrayLike] = None,
                       pose_angles: Optional[ArrayLike] = None, options: Optional[SolveOptions] = None,
-                      warm_start: bool = True, shapes: bool = False, threads: Optional[int] = None
-                      ) -> dict[str, Any]: ...
+                      warm_start: bool = True, shapes: bool = False, threads: Optional[int] = None,
+                      progress: Optional[Progress] = None) -> dict[str, Any]: ...
 def solve_edge_batch(whisker: WhiskerArg, edge_points: ArrayLike, edge_directions: Optional[ArrayLike] = None, *,
                      arc_length_hint: Optional[ArrayLike] = None, approach: Optional[ArrayLike] = None,
                      pose_base: Optional[ArrayLike] = None, pose_angles: Optional[ArrayLike] = None,
                      options: Optional[SolveOptions] = None, warm_start: bool = True, shapes: bool = False,
-                     threads: Optional[int] = None) -> dict[str, Any]: ...
+                     threads: Optional[int] = None, progress: Optional[Progress] = None) -> dict[str, Any]: ...
 def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points: ArrayLike,
                                 edge_directions: Optional[ArrayLike] = None, mu: float = 0.0, *,
                                 initial_contact: Optional[ArrayLike] = None, approach: Optional[ArrayLike] = None,
                                 pose_base: Optional[ArrayLike] = None, pose_angles: Optional[ArrayLike] = None,
                                 options: Optional[SolveOptions] = None, shapes: bool = False,
-                                threads: Optional[int] = None) -> dict[str, Any]: ...
+                                threads: Optional[int] = None, progress: Optional[Progress] = None) -> dict[str, Any]: ...
 def max_threads() -> int: ...
 
 class Case:

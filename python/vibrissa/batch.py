@@ -13,6 +13,11 @@ With ``warm_start=True`` (the default for the contact modes) frame ``f`` starts 
 when that one converged, so a series runs in order on one core and series run in parallel; with
 ``warm_start=False`` every frame is independent and frames run in parallel. The number of threads never
 changes the results. ``threads=None`` uses OpenMP's default (``OMP_NUM_THREADS`` or all cores).
+
+A series with warm starts is one :class:`ContactTracker` run in tracked mode (docs/conventions.md, "Contact
+tracking"): warm starts, hints and the friction start point follow the same policy as trials and arrays.
+Every batch runs with the GIL released; ``progress(done, total)`` (frames) is called from the calling thread
+about every 50 ms, and Ctrl-C raises ``KeyboardInterrupt`` within 0.5 s.
 """
 
 from __future__ import annotations
@@ -100,7 +105,7 @@ WhiskerArg = Union["_vibrissa.Whisker", Sequence["_vibrissa.Whisker"]]
 def solve_force_batch(whisker: WhiskerArg, force: Any, arc_length: Any, angle: Any = None, *,
                       pose_base: Any = None, pose_angles: Any = None,
                       options: Optional[_vibrissa.SolveOptions] = None, shapes: bool = False,
-                      threads: Optional[int] = None) -> BatchResult:
+                      threads: Optional[int] = None, progress: Any = None) -> BatchResult:
     """Force mode for many frames (see :func:`solve_force`): ``force`` [N], ``arc_length`` [m] and ``angle``
     [rad] are numbers, (F,) or (S, F). Frames are independent and run in parallel.
 
@@ -108,39 +113,41 @@ def solve_force_batch(whisker: WhiskerArg, force: Any, arc_length: Any, angle: A
     per frame. ``shapes=True`` also returns the deflected shapes."""
     return BatchResult(_vibrissa.solve_force_batch(
         whisker, force, arc_length, angle, pose_base=pose_base, pose_angles=pose_angles, options=options,
-        shapes=shapes, threads=threads))
+        shapes=shapes, threads=threads, progress=progress))
 
 
 def solve_point_batch(whisker: WhiskerArg, points: Any, *, arc_length_hint: Any = None,
                       edge_direction: Any = None, pose_base: Any = None, pose_angles: Any = None,
                       options: Optional[_vibrissa.SolveOptions] = None, warm_start: bool = True,
-                      shapes: bool = False, threads: Optional[int] = None) -> BatchResult:
+                      shapes: bool = False, threads: Optional[int] = None, progress: Any = None) -> BatchResult:
     """Contact-point mode for many frames (see :func:`solve_point`): ``points`` (F, 3) or (S, F, 3) world
     [m]. ``arc_length_hint`` [m] (number, (F,) or (S, F)); ``edge_direction`` ((3,), (F, 3) ...) splits the
     force into normal_force / edge_force. With ``warm_start`` each frame starts from the previous one."""
     return BatchResult(_vibrissa.solve_point_batch(
         whisker, points, arc_length_hint=arc_length_hint, edge_direction=edge_direction, pose_base=pose_base,
-        pose_angles=pose_angles, options=options, warm_start=warm_start, shapes=shapes, threads=threads))
+        pose_angles=pose_angles, options=options, warm_start=warm_start, shapes=shapes, threads=threads,
+        progress=progress))
 
 
 def solve_edge_batch(whisker: WhiskerArg, edge_points: Any, edge_directions: Any = None, *,
                      arc_length_hint: Any = None, approach: Any = None, pose_base: Any = None,
                      pose_angles: Any = None, options: Optional[_vibrissa.SolveOptions] = None,
-                     warm_start: bool = True, shapes: bool = False, threads: Optional[int] = None) -> BatchResult:
+                     warm_start: bool = True, shapes: bool = False, threads: Optional[int] = None,
+                     progress: Any = None) -> BatchResult:
     """Edge mode (frictionless) for many frames (see :func:`solve_edge`): the edge of frame f passes through
     ``edge_points[f]`` [m] along ``edge_directions[f]`` (default world +z; (3,) for a fixed direction).
     ``approach`` gives the direction the whisker moves into the edge (else no_contact)."""
     return BatchResult(_vibrissa.solve_edge_batch(
         whisker, edge_points, edge_directions, arc_length_hint=arc_length_hint, approach=approach,
         pose_base=pose_base, pose_angles=pose_angles, options=options, warm_start=warm_start, shapes=shapes,
-        threads=threads))
+        threads=threads, progress=progress))
 
 
 def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points: Any, edge_directions: Any = None,
                                 mu: float = 0.0, *, initial_contact: Any = None, approach: Any = None,
                                 pose_base: Any = None, pose_angles: Any = None,
                                 options: Optional[_vibrissa.SolveOptions] = None, shapes: bool = False,
-                                threads: Optional[int] = None) -> BatchResult:
+                                threads: Optional[int] = None, progress: Any = None) -> BatchResult:
     """Frictional edge mode (Coulomb ``mu``) along time series (see :func:`solve_frictional_edge`).
 
     The contact history runs through each series in order: frame f starts from frame f-1's contact point and
@@ -148,4 +155,5 @@ def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points: Any, edge_dire
     unless ``initial_contact`` ((3,) or (S, 3), world [m]) gives the first frame's previous contact."""
     return BatchResult(_vibrissa.solve_frictional_edge_batch(
         whisker, edge_points, edge_directions, mu, initial_contact=initial_contact, approach=approach,
-        pose_base=pose_base, pose_angles=pose_angles, options=options, shapes=shapes, threads=threads))
+        pose_base=pose_base, pose_angles=pose_angles, options=options, shapes=shapes, threads=threads,
+        progress=progress))
