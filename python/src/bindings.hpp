@@ -14,6 +14,7 @@ namespace py = pybind11;
 
 void bind_core(py::module_& m);   // core.cpp: Scheme, BaseJoint, Pose, WhiskerProperties, Whisker
 void bind_solve(py::module_& m);  // solve.cpp: Status, SolveOptions, Edge, LoadState, Solution, solve_*
+void bind_contact(py::module_& m);  // contact.cpp: ContactMode, ContactTracker
 void bind_batch(py::module_& m);  // batch.cpp: solve_*_batch (GIL released, OpenMP)
 void bind_case(py::module_& m);   // case.cpp: Case JSON round trip (same code as `vibrissa solve`)
 void bind_trial(py::module_& m);  // trial.cpp: Trial, read_trial, synthesis and analysis (= `vibrissa synth/trial`)

@@ -176,3 +176,34 @@ def test_batch_progress_counts_frames_up_to_the_total(small_whisker):
     assert batch.converged.sum() > F // 2
     assert seen and seen[-1] == (F, F)
     assert all(a[0] < b[0] for a, b in zip(seen, seen[1:]))
+
+
+def test_a_warm_started_series_is_a_contact_tracker_run(small_whisker):
+    F = 30
+    points = np.column_stack([np.full(F, 0.018), np.linspace(0.003, 0.006, F), np.zeros(F)])
+    direction = np.array([0.0, 0.6, 0.8])
+    batch = vibrissa.solve_frictional_edge_batch(small_whisker, points, direction, mu=0.3)
+    tracker = vibrissa.ContactTracker(small_whisker, "frictional_edge", mu=0.3)
+    for i in range(F):
+        frame = tracker.step_tracked(None, Edge(points[i], direction))
+        assert_matches(batch, i, frame["solution"], tol=0.0)
+        assert frame["onset"] == (i == 0)
+    assert tracker.solves == F
+
+
+def test_tracker_onset_by_crossing_then_push_past_and_release():
+    w = vibrissa.Whisker.from_parabola(0.03, 20.0, properties=WhiskerProperties(links=60))
+    peg = Edge([0.02 * np.cos(0.25), 0.02 * np.sin(0.25), 0.0])
+    tracker = vibrissa.ContactTracker(w, vibrissa.ContactMode.edge)
+    thetas = np.concatenate([np.linspace(-0.3, 1.2, 301), np.linspace(1.2, -0.3, 301)[1:]])
+    frames = [tracker.step(Pose(theta=t), [peg]) for t in thetas]
+    states = [f["state"].label for f in frames]
+    onsets = [i for i, f in enumerate(frames) if f["onset"]]
+    assert states[0] == "free" and onsets and states[onsets[0]] == "contact"
+    first_past = states.index("pushed_past")
+    back = first_past + states[first_past:].index("free")
+    assert onsets[0] < first_past < 301 < back
+    assert set(states[first_past:back]) == {"pushed_past"}
+    assert all(f["solution"].friction == vibrissa.FrictionState.none for f in frames)
+    with pytest.raises(ValueError, match="mode"):
+        vibrissa.ContactTracker(w, "sliding")

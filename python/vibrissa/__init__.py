@@ -23,7 +23,9 @@ SI units throughout: m, N, N·m, Pa, rad. World-frame quantities unless the name
 from ._vibrissa import (  # noqa: F401
     BaseJoint,
     Case,
+    ContactMode,
     ContactState,
+    ContactTracker,
     Edge,
     FrictionState,
     LoadState,
@@ -74,7 +76,7 @@ from .pipeline import (  # noqa: F401
 __all__ = [
     "ArrayResult", "Trial", "TrialResult", "analyze_trial", "default_array_config", "read_trial",
     "simulate_array", "synthesize_trial", "synthesize_trial_defaults",
-    "BaseJoint", "BatchResult", "Case", "ContactState", "Edge", "FrictionState", "LoadState", "Pose",
+    "BaseJoint", "BatchResult", "Case", "ContactMode", "ContactState", "ContactTracker", "Edge", "FrictionState", "LoadState", "Pose",
     "STATUS_NAMES", "Scheme", "Solution",
     "SolveOptions", "Status", "Whisker", "WhiskerFrameSignals", "WhiskerProperties", "__version__",
     "case_from_dict", "load_case", "make_whisker", "max_threads", "nearest_rest_point", "pose_from_rotation",

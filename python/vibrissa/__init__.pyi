@@ -2,7 +2,9 @@
 
 from ._vibrissa import BaseJoint as BaseJoint
 from ._vibrissa import Case as Case
+from ._vibrissa import ContactMode as ContactMode
 from ._vibrissa import ContactState as ContactState
+from ._vibrissa import ContactTracker as ContactTracker
 from ._vibrissa import Edge as Edge
 from ._vibrissa import FrictionState as FrictionState
 from ._vibrissa import LoadState as LoadState

@@ -39,6 +39,13 @@ class ContactState(enum.IntEnum):
     @property
     def label(self) -> str: ...
 
+class ContactMode(enum.IntEnum):
+    contact_point: ClassVar[ContactMode]
+    edge: ClassVar[ContactMode]
+    frictional_edge: ClassVar[ContactMode]
+    @property
+    def label(self) -> str: ...
+
 class FrictionState(enum.IntEnum):
     none: ClassVar[FrictionState]
     stick: ClassVar[FrictionState]
@@ -244,6 +251,20 @@ def solve_edge(whisker: Whisker, edge: Edge, arc_length_hint: Optional[float] = 
 def solve_frictional_edge(whisker: Whisker, edge: Edge, mu: float, previous_contact_W: ArrayLike, *,
                           options: Optional[SolveOptions] = None, warm: Warm = None,
                           approach_W: Optional[ArrayLike] = None, pose: Optional[Pose] = None) -> Solution: ...
+class ContactTracker:
+    def __init__(self, whisker: Whisker, mode: Union[ContactMode, str] = "edge", *, mu: float = 0.0,
+                 options: Optional[SolveOptions] = None) -> None: ...
+    def step(self, pose: Optional[Pose], edges: Union[Edge, Sequence[Edge]]) -> dict[str, Any]: ...
+    def step_tracked(self, pose: Optional[Pose], edge: Optional[Edge] = None, *, in_contact: bool = True,
+                     contact_point_W: Optional[ArrayLike] = None, arc_length_hint: Optional[float] = None,
+                     approach_W: Optional[ArrayLike] = None,
+                     initial_contact_W: Optional[ArrayLike] = None) -> dict[str, Any]: ...
+    def reset(self) -> None: ...
+    @property
+    def state(self) -> ContactState: ...
+    @property
+    def solves(self) -> int: ...
+
 def nearest_rest_point(whisker: Whisker, edge: Edge, *, pose: Optional[Pose] = None) -> dict[str, Any]: ...
 
 WhiskerArg = Union[Whisker, Sequence[Whisker]]
