@@ -21,12 +21,24 @@ std::string quote(const std::string& s) {
   out.push_back('\'');
   return out;
 }
+
+std::filesystem::path figures_dir() {
+  namespace fs = std::filesystem;
+  if (const char* env_dir = std::getenv("VIBRISSA_FIGURES_DIR")) return env_dir;
+  // Installed: <prefix>/bin/vibrissa next to <prefix>/share/vibrissa/figures (cmake --install, the .deb).
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = exe.parent_path().parent_path() / VIBRISSA_FIGURES_INSTALL_DIR;
+    if (fs::exists(installed / "trial_figures.py", ec)) return installed;
+  }
+  return VIBRISSA_FIGURES_SOURCE_DIR;  // the build tree: the scripts in the source tree
+}
+
 }  // namespace
 
 int run_figure_script(const std::string& script, const std::vector<std::string>& args) {
-  const char* env_dir = std::getenv("VIBRISSA_FIGURES_DIR");
-  const std::filesystem::path dir = env_dir ? env_dir : VIBRISSA_FIGURES_DIR;
-  const std::filesystem::path path = dir / script;
+  const std::filesystem::path path = figures_dir() / script;
   if (!std::filesystem::exists(path)) {
     std::cerr << "vibrissa: warning: figure script not found: " << path << " (figures skipped)\n";
     return 2;

@@ -18,6 +18,7 @@ PACKAGES=(
   python3-numpy python3-matplotlib python3-pytest python3-h5py
   python3-pandas           # TrialResult.to_dataframe() in the Python package
   ffmpeg                   # MP4 animations
+  python3-venv python3-pip dpkg-dev   # install checks: pip into a venv, cpack -G DEB (dpkg-shlibdeps)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

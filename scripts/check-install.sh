@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The three ways to install vibrissa, each used without the source tree (CI runs this after the build):
+#   1. CMake: install to a prefix, build and run an outside C++ project with find_package(vibrissa).
+#   2. pip: `pip install .` into a fresh venv (Debian's NumPy through --system-site-packages), then run the
+#      examples and the pipeline from a directory outside the source tree.
+#   3. Debian package: cpack -G DEB, dpkg -i, then `vibrissa demo` and `import vibrissa` with /usr/bin/python3.
+# Usage: bash scripts/check-install.sh [BUILD_DIR]   (a configured and built Release build directory)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SRC="$PWD"
+BUILD="$(cd "${1:-build}" && pwd)"
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+cd "$WORK"
+
+echo "=== 1. CMake package: install to a prefix, build an outside project ==="
+cmake --install "$BUILD" --prefix "$WORK/prefix" > /dev/null
+cmake -S "$SRC/tests/package/consumer" -B "$WORK/consumer" -G Ninja -DCMAKE_PREFIX_PATH="$WORK/prefix" > /dev/null
+cmake --build "$WORK/consumer" > /dev/null
+"$WORK/consumer/consumer"
+env -u VIBRISSA_FIGURES_DIR "$WORK/prefix/bin/vibrissa" synth "$WORK/t.csv" --duration 0.5 > /dev/null
+env -u VIBRISSA_FIGURES_DIR "$WORK/prefix/bin/vibrissa" trial "$WORK/t.csv" --out "$WORK/t_results" > /dev/null
+ls "$WORK"/t_results/figures/*.png > /dev/null 2>&1 || { ls -R "$WORK/t_results"; echo "installed CLI drew no figures"; exit 1; }
+echo "installed CLI: figures from $WORK/prefix/share/vibrissa/figures"
+
+echo "=== 2. pip install . into a fresh venv ==="
+/usr/bin/python3 -m venv --system-site-packages "$WORK/venv"
+VIBRISSA_BUILD_DIR="$WORK/wheel-build" VIBRISSA_BUILD_JOBS="$(nproc)" \
+  "$WORK/venv/bin/python" -m pip install --no-index --quiet "$SRC"
+mkdir "$WORK/elsewhere" && cd "$WORK/elsewhere"
+MPLBACKEND=Agg "$WORK/venv/bin/python" "$SRC/examples/peg_contact.py" --output peg.png > /dev/null
+"$WORK/venv/bin/python" - <<'PY'
+import pathlib, vibrissa
+assert "site-packages" in vibrissa.__file__, vibrissa.__file__
+trial = vibrissa.synthesize_trial(duration=0.5)
+result = vibrissa.analyze_trial(trial, mu=0.48)
+result.write("out")
+result.figures("out/figures")
+assert pathlib.Path("out/summary.json").is_file() and any(pathlib.Path("out/figures").glob("*.png"))
+print("pip-installed vibrissa", vibrissa.__version__, "from", pathlib.Path(vibrissa.__file__).parent)
+PY
+cd "$WORK"
+
+echo "=== 3. Debian package ==="
+bash "$SRC/scripts/build-deb.sh" "$BUILD" > "$WORK/cpack.log"
+DEB="$(ls "$BUILD"/vibrissa_*.deb | head -n1)"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+$SUDO dpkg -i "$DEB" > /dev/null
+/usr/bin/vibrissa demo > /dev/null
+(cd / && /usr/bin/python3 -c "import vibrissa, sys; assert vibrissa.__file__.startswith('/usr/lib/python3/dist-packages'), vibrissa.__file__; print('deb python module', vibrissa.__file__)")
+$SUDO dpkg -r vibrissa > /dev/null
+echo "install checks: all three passed"
