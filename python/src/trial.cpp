@@ -103,7 +103,62 @@ py::dict table_columns(const io::ResultTable& table) {
 void bind_trial(py::module_& m) {
   py::class_<trial::Trial>(m, "Trial",
                            "A tracked (or synthetic) whisking trial (docs/trials.md), SI units, world frame. Read one "
-                           "with vibrissa.read_trial or make one with vibrissa.synthesize_trial.")
+                           "with vibrissa.read_trial, make one with vibrissa.synthesize_trial, or build one from "
+                           "your own arrays with Trial(time=..., base_W=..., ...).")
+      .def(py::init([](const py::object& time, const py::object& base_W, const py::object& theta,
+                       const py::object& phi, const py::object& contact, const py::object& rest_shape,
+                       const py::object& edges, const py::object& zeta, const py::object& contact_W,
+                       const py::object& shape_W, double youngs_modulus_Pa, double poisson_ratio,
+                       double base_radius, double taper_ratio, int links, double frame_rate_Hz,
+                       const std::string& source) {
+             trial::Trial t;
+             t.source = source;
+             t.time = vector1(time, "time");
+             t.base_W = points3(base_W, "base_W");
+             t.theta = vector1(theta, "theta");
+             t.phi = vector1(phi, "phi");
+             if (!zeta.is_none()) t.zeta = vector1(zeta, "zeta");
+             for (double c : vector1(contact, "contact")) {
+               if (c != 0.0 && c != 1.0)
+                 throw py::value_error("contact must hold only 0 and 1, got " + py::repr(py::float_(c)).cast<std::string>());
+               t.contact.push_back(static_cast<std::uint8_t>(c));
+             }
+             if (!contact_W.is_none()) t.contact_W = points3(contact_W, "contact_W");
+             if (!shape_W.is_none()) {
+               const DoubleArray s = as_double_array(shape_W, "shape_W");
+               if (s.ndim() != 3 || s.shape(2) != 3)
+                 throw py::value_error("shape_W must have shape (n, K, 3), got " + shape_string(s));
+               const double* d = s.data();
+               for (py::ssize_t i = 0; i < s.shape(0); ++i) {  // NaN rows pad shorter shapes
+                 std::vector<Eigen::Vector3d> frame;
+                 for (py::ssize_t k = 0; k < s.shape(1); ++k, d += 3)
+                   if (std::isfinite(d[0]) && std::isfinite(d[1]) && std::isfinite(d[2])) frame.emplace_back(d[0], d[1], d[2]);
+                 t.shape_W.push_back(std::move(frame));
+               }
+             }
+             t.meta.rest_shape = points3(rest_shape, "rest_shape");
+             const DoubleArray e = as_double_array(edges, "edges");
+             if (!((e.ndim() == 2 && e.shape(1) == 6) || (e.ndim() == 1 && e.shape(0) == 6)))
+               throw py::value_error("edges must have shape (6,) or (m, 6) (point x, y, z, direction x, y, z), got " +
+                                     shape_string(e));
+             for (py::ssize_t k = 0; k < e.size() / 6; ++k) {
+               const double* r = e.data() + 6 * k;
+               t.meta.edges.push_back(Edge{{r[0], r[1], r[2]}, {r[3], r[4], r[5]}});
+             }
+             t.meta.material = trial::TrialMaterial{youngs_modulus_Pa, poisson_ratio, base_radius, taper_ratio, links};
+             t.meta.frame_rate = frame_rate_Hz;
+             trial::validate(t);
+             return t;
+           }),
+           py::kw_only(), py::arg("time"), py::arg("base_W"), py::arg("theta"), py::arg("phi"), py::arg("contact"),
+           py::arg("rest_shape"), py::arg("edges"), py::arg("zeta") = py::none(), py::arg("contact_W") = py::none(),
+           py::arg("shape_W") = py::none(), py::arg("youngs_modulus_Pa") = 3.3e9, py::arg("poisson_ratio") = 0.38,
+           py::arg("base_radius") = 100e-6, py::arg("taper_ratio") = 15.0, py::arg("links") = 100,
+           py::arg("frame_rate_Hz") = 1000.0, py::arg("source") = "python",
+           "A trial from arrays in SI units (docs/trials.md): time (n,) [s], base_W (n, 3) [m], theta, phi and "
+           "optional zeta (n,) [rad], contact (n,) 0/1, rest_shape (K, 3) [m], edges (m, 6); optional contact_W "
+           "(n, 3) [m] (NaN outside contact) and shape_W (n, K, 3) [m] (NaN-padded). Validated like a file: "
+           "ValueError naming the row and column.")
       .def_property_readonly("time", [](const trial::Trial& t) { return to_array(t.time); }, "(n,) time stamps [s]")
       .def_property_readonly("base_W", [](const trial::Trial& t) { return to_array(t.base_W); },
                              "(n, 3) whisker base point, world [m]")

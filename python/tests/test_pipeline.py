@@ -260,3 +260,22 @@ def test_errors_name_the_field(tmp_path, synthetic_trial):
                    "0.001,0,nan,0,0,0,1\n")
     with pytest.raises(ValueError, match="column 'base_y'"):
         vibrissa.analyze_trial(bad)
+
+
+def test_a_trial_built_from_arrays_analyses_like_the_same_trial_from_a_file(synthetic_trial):
+    t = synthetic_trial
+    mine = vibrissa.Trial(time=t.time, base_W=t.base_W, theta=t.theta, phi=t.phi, zeta=t.zeta, contact=t.contact,
+                          contact_W=t.contact_W, rest_shape=t.rest_shape, edges=t.edges,
+                          frame_rate_Hz=t.frame_rate_Hz, **t.material)
+    assert len(mine) == len(t) and mine.source == "python"
+    a, b = vibrissa.analyze_trial(t, mu=0.48), vibrissa.analyze_trial(mine, mu=0.48)
+    for name in ("cp_FT", "fric_s_applied", "edge_MB"):
+        np.testing.assert_array_equal(a[name], b[name])
+    bad_time = t.time.copy()
+    bad_time[5] = bad_time[4]
+    with pytest.raises(ValueError, match="time"):
+        vibrissa.Trial(time=bad_time, base_W=t.base_W, theta=t.theta, phi=t.phi, contact=t.contact,
+                       rest_shape=t.rest_shape, edges=t.edges)
+    with pytest.raises(ValueError, match="edges must have shape"):
+        vibrissa.Trial(time=t.time, base_W=t.base_W, theta=t.theta, phi=t.phi, contact=t.contact,
+                       rest_shape=t.rest_shape, edges=[0.0, 1.0])

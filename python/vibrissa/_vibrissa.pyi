@@ -316,6 +316,12 @@ def write_result(path: str, solution: Solution) -> None: ...
 Float1 = npt.NDArray[np.float64]  # shape (n,)
 
 class Trial:
+    def __init__(self, *, time: ArrayLike, base_W: ArrayLike, theta: ArrayLike, phi: ArrayLike,
+                 contact: ArrayLike, rest_shape: ArrayLike, edges: ArrayLike, zeta: Optional[ArrayLike] = None,
+                 contact_W: Optional[ArrayLike] = None, shape_W: Optional[ArrayLike] = None,
+                 youngs_modulus_Pa: float = 3.3e9, poisson_ratio: float = 0.38, base_radius: float = 100e-6,
+                 taper_ratio: float = 15.0, links: int = 100, frame_rate_Hz: float = 1000.0,
+                 source: str = "python") -> None: ...
     @property
     def time(self) -> Float1: ...  # (n,) [s]
     @property
