@@ -28,7 +28,7 @@ def build(d):
     fig, (a0, a1) = plt.subplots(1, 2, figsize=(style.PAPER_WIDTH_IN, 4.2), gridspec_kw={"width_ratios": [1.4, 1]})
     im = a0.imshow(peak[:, keep].T, aspect="auto", origin="lower", cmap=style.SEQUENTIAL_CMAP,
                    extent=(-0.5, len(pitch) - 0.5, -0.5, keep.sum() - 0.5))
-    a0.set_xticks(range(len(pitch)), [f"{p:+.0f}" for p in pitch])
+    a0.set_xticks(range(len(pitch)), [f"{p:+.0f}" if round(p) else "0" for p in pitch])
     a0.set_yticks(range(keep.sum()), [n for n, k in zip(names, keep) if k], fontsize=6)
     a0.set_xlabel(style.label("head pitch", "deg"))
     a0.set_ylabel("whisker")
@@ -55,14 +55,7 @@ def build(d):
 
 
 def main(argv=None):
-    parser = style.parser(__doc__)
-    parser.add_argument("array_h5")
-    parser.add_argument("out")
-    args = parser.parse_args(argv)
-    style.apply()
-    fig, _ = build(load(args.array_h5))
-    style.save(fig, args.out, dpi=args.dpi)
-    print("wrote", args.out)
+    style.one_png_main(__doc__, load, build, argv)
 
 
 if __name__ == "__main__":

@@ -44,14 +44,7 @@ def build(d):
 
 
 def main(argv=None):
-    parser = style.parser(__doc__)
-    parser.add_argument("array_h5")
-    parser.add_argument("out")
-    args = parser.parse_args(argv)
-    style.apply()
-    fig, _ = build(load(args.array_h5))
-    style.save(fig, args.out, dpi=args.dpi)
-    print("wrote", args.out)
+    style.one_png_main(__doc__, load, build, argv)
 
 
 if __name__ == "__main__":

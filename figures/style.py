@@ -156,6 +156,19 @@ def parser(doc):
                                                         formatter_class=argparse.RawDescriptionHelpFormatter))
 
 
+def one_png_main(doc, load, build, argv=None):
+    """main() of a script drawing one PNG from array.h5: `SCRIPT ARRAY_H5 OUT.png [--dpi DPI]`, where
+    build(load(ARRAY_H5)) returns (figure, axes)."""
+    p = parser(doc)
+    p.add_argument("array_h5")
+    p.add_argument("out")
+    args = p.parse_args(argv)
+    apply()
+    fig, _ = build(load(args.array_h5))
+    save(fig, args.out, dpi=args.dpi)
+    print("wrote", args.out)
+
+
 def save(fig, path, dpi=DEFAULT_DPI):
     """Lays the figure out, writes it atomically (atomic_save) and closes it."""
     fig.tight_layout()
