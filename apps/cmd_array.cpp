@@ -7,6 +7,8 @@
 #include <iostream>
 #include <memory>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "progress.hpp"
@@ -23,6 +25,9 @@ struct ArrayArgs {
   std::string config, out = "array_results", pitches;
   bool csv = false, no_figures = false, gif = false, print_default = false;
   int threads = 0;
+  int frames = -1;     ///< animation: rendered frames (output.render_count); -1: the config's
+  double fps = 0.0;    ///< animation: frames per second (0: the script's default)
+  int figure_dpi = 0;  ///< figures: resolution (0: the scripts' default)
 };
 
 std::vector<double> parse_pitch_list(const std::string& text) {
@@ -53,6 +58,11 @@ void register_array(CLI::App& app) {
   cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--csv", a->csv, "also write array.csv (one row per pitch, whisker and frame)");
   cmd->add_flag("--gif", a->gif, "write the animation as GIF instead of MP4");
+  cmd->add_option("--frames", a->frames, "animation: number of rendered frames (overrides output.render_count)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--fps", a->fps, "animation: frames per second (default 12)")->check(CLI::PositiveNumber);
+  cmd->add_option("--figure-dpi", a->figure_dpi, "figures and animation: resolution (default 150; 300 for print)")
+      ->check(CLI::Range(50, 1200));
   cmd->add_flag("--no-figures", a->no_figures, "skip the animation and PNG figures (an older run's are removed)");
   cmd->add_flag("--print-default-config", a->print_default, "print the built-in configuration and exit");
   cmd->callback([a] {
@@ -68,6 +78,7 @@ void register_array(CLI::App& app) {
       j["head"]["pitches_deg"] = list;
     }
     if (a->threads > 0) j["threads"] = a->threads;
+    if (a->frames >= 0) j["output"]["render_count"] = a->frames;
     const fs::path base = a->config.empty() ? fs::current_path() : fs::path(a->config).parent_path();
     const array::SimulationConfig config = io::array_config_from_json(j, base);
     const fs::path out(a->out);
@@ -100,11 +111,16 @@ void register_array(CLI::App& app) {
     std::cout.flush();
     if (!a->no_figures) {
       const std::string h5 = (out / "array.h5").string();
-      run_figure_script("array_traces.py", {h5, (out / io::kArrayTracesFigure).string()});
-      run_figure_script("array_animation.py",
-                        {h5, (out / (a->gif ? io::kArrayAnimationGif : io::kArrayAnimationMp4)).string()});
+      auto with_dpi = [&](std::vector<std::string> args) {
+        if (a->figure_dpi > 0) args.insert(args.end(), {"--dpi", std::to_string(a->figure_dpi)});
+        return args;
+      };
+      run_figure_script("array_traces.py", with_dpi({h5, (out / io::kArrayTracesFigure).string()}));
+      std::vector<std::string> anim = {h5, (out / (a->gif ? io::kArrayAnimationGif : io::kArrayAnimationMp4)).string()};
+      if (a->fps > 0.0) anim.insert(anim.end(), {"--fps", std::to_string(a->fps)});
+      run_figure_script("array_animation.py", with_dpi(anim));
       if (config.pitches.size() > 1)
-        run_figure_script("array_pitch_sweep.py", {h5, (out / io::kArrayPitchSweepFigure).string()});
+        run_figure_script("array_pitch_sweep.py", with_dpi({h5, (out / io::kArrayPitchSweepFigure).string()}));
     }
     std::cout << "wrote " << out.string() << "/{array.h5, summary.json, pitch_summary.csv"
               << (a->csv ? ", array.csv" : "") << (a->no_figures ? "" : ", figures") << "}\n";

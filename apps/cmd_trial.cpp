@@ -5,6 +5,9 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "progress.hpp"
@@ -21,7 +24,20 @@ struct TrialArgs {
   double mu = -1.0, mu_eq7 = -1.0;
   trial::TrialFlags flags;
   bool no_figures = false;
+  std::vector<double> window;  ///< figures: time series over [start, end] s
+  int whisk = 0;               ///< figures: time series over contact period `whisk` (from 1)
+  int figure_dpi = 0;          ///< figures: PNG resolution (0: the script's default)
 };
+
+/// Figure options for trial_figures.py, as its flags (one code path with TrialResult.figures in Python).
+std::vector<std::string> figure_flags(const TrialArgs& a) {
+  std::vector<std::string> flags;
+  if (!a.window.empty())
+    flags.insert(flags.end(), {"--window", std::to_string(a.window[0]) + ',' + std::to_string(a.window[1])});
+  if (a.whisk > 0) flags.insert(flags.end(), {"--whisk", std::to_string(a.whisk)});
+  if (a.figure_dpi > 0) flags.insert(flags.end(), {"--dpi", std::to_string(a.figure_dpi)});
+  return flags;
+}
 }  // namespace
 
 void register_trial(CLI::App& app) {
@@ -40,10 +56,22 @@ void register_trial(CLI::App& app) {
   cmd->add_flag("--rest-shape-per-contact", a->flags.rest_shape_per_contact,
                 "use the tracked shape at the end of each contact period as its undeflected shape (spec §2.3)");
   cmd->add_flag("--no-figures", a->no_figures, "skip the PNG figures (an older run's figures/ is removed)");
+  auto* window = cmd->add_option("--window", a->window,
+                                 "figures: draw the time series over START_S,END_S (seconds of the trial clock; "
+                                 "default: whole trial up to 2 s, else the first second of contact)")
+                     ->delimiter(',')
+                     ->expected(2);
+  cmd->add_option("--whisk", a->whisk, "figures: draw the time series over contact period N (from 1)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(window);
+  cmd->add_option("--figure-dpi", a->figure_dpi, "figures: PNG resolution (default 150; 300 for print)")
+      ->check(CLI::Range(50, 1200));
   cmd->callback([a] {
     namespace fs = std::filesystem;
     const fs::path in(a->trial);
     const fs::path out = a->out.empty() ? in.parent_path() / (in.stem().string() + "_results") : fs::path(a->out);
+    if (!a->window.empty() && !(a->window[0] < a->window[1]))
+      throw std::invalid_argument("--window START_S,END_S: start must be before end");
     const trial::Trial tr = io::read_trial(a->trial);
     if (a->mu >= 0.0) a->flags.mu = a->mu;
     if (a->mu_eq7 >= 0.0) a->flags.mu_eq7 = a->mu_eq7;
@@ -72,8 +100,10 @@ void register_trial(CLI::App& app) {
     if (!a->no_figures) {
       const fs::path figures = out / io::kTrialFiguresFolder;
       fs::create_directories(figures);
-      run_figure_script("trial_figures.py",
-                        {(out / "frames.h5").string(), (out / "summary.json").string(), figures.string()});
+      std::vector<std::string> args = {(out / "frames.h5").string(), (out / "summary.json").string(),
+                                       figures.string()};
+      for (std::string& f : figure_flags(*a)) args.push_back(std::move(f));
+      run_figure_script("trial_figures.py", args);
     }
   });
 }

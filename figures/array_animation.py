@@ -1,25 +1,27 @@
 #!/usr/bin/python3
-"""Animation of the whisker array in 3D (Fig. 4a style): whiskers in contact red and thick, whiskers that
-pushed past the object green, the others light grey; the object's edges black.
+"""Animation of the whisker array (Fig. 4a style) in two orthographic views side by side: from above (top)
+and from the side, so one can tell whether a whisker passes the object. States by colour, line style and
+width (see style.STATES; readable in greyscale): free, in contact (with the contact point marked), pushed past;
+the object in black.
 
-usage: array_animation.py ARRAY_H5 OUT.(mp4|gif)
-Writes MP4 through matplotlib's FFMpegWriter (Debian ffmpeg) or GIF through PillowWriter, and a still
-PNG of the frame with the most contacts next to it (OUT stem + "_frame.png").
+usage: array_animation.py ARRAY_H5 OUT.(mp4|gif) [--fps FPS] [--dpi DPI]  (DPI: the still and the video)
+Draws every rendered frame of array.h5 (group /render; how many is `vibrissa array --frames N`, i.e. the
+config's output.render_count). Writes MP4 through matplotlib's FFMpegWriter (Debian ffmpeg) or GIF through
+PillowWriter, and a still PNG of the frame with the most contacts next to it (OUT stem + "_frame.png").
 """
 import os
-import sys
 
 import h5py
-import matplotlib
+import numpy as np
+import style
+from atomic_save import save_animation, save_figure
+from matplotlib import animation
+from matplotlib import pyplot as plt
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from atomic_save import save_animation, save_figure  # noqa: E402
-from matplotlib import animation  # noqa: E402
-
-COLOURS = {0: "0.72", 1: "red", 2: "green"}
-WIDTHS = {0: 0.8, 1: 2.4, 2: 1.4}
+DEFAULT_FPS = 12
+# (horizontal, vertical) world axes of each view, and the axis names (head frame at rest = world).
+VIEWS = (("top view (from above)", 1, 0), ("side view (from the right)", 1, 2))
+AXIS_NAMES = ("x, lateral", "y, rostral", "z, dorsal")
 
 
 def load(path):
@@ -27,76 +29,104 @@ def load(path):
         r = f["render"]
         return dict(
             frames=r["frame"][()],
-            deflected=r["deflected"][()] * 1e3,
-            edges=r["edges"][()] * 1e3,
+            deflected=r["deflected"][()] * style.SCALE["mm"],
+            edges=r["edges"][()] * style.SCALE["mm"],
             pitch_index=int(r.attrs["pitch_index"]),
             state=f["state"][()],
+            contact=f["contact_point_W"][()] * style.SCALE["mm"],
             time=f["time"][()],
             pitch=f["pitch"][()],
         )
 
 
-def main():
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    d = load(sys.argv[1])
-    out = sys.argv[2]
+def legend_handles():
+    handles = [plt.Line2D([], [], color=s["color"], ls=s["ls"], lw=s["lw"], label=s["name"],
+                          marker="o" if k == 1 else None, ms=4) for k, s in style.STATES.items()]
+    handles.append(plt.Line2D([], [], label="object", marker="o", ms=4, **style.OBJECT))
+    return handles
+
+
+class ArrayAnimation:
+    """The figure and its artists; draw(i) shows rendered frame i."""
+
+    def __init__(self, d):
+        self.d = d
+        p = d["pitch_index"]
+        self.states = d["state"][p][:, d["frames"]]  # [whisker][render]
+        self.contact = d["contact"][p][:, d["frames"]]  # [whisker][render][3]
+        shapes = d["deflected"]  # [render][whisker][node][3]
+        pts = shapes.reshape(-1, 3)  # the whiskers set the ranges; a long object runs off the axes
+        pts = pts[np.isfinite(pts).all(axis=1)]
+        self.fig, self.axes = plt.subplots(1, 2, figsize=(style.PAPER_WIDTH_IN, 3.9))
+        self.lines, self.edge_lines, self.markers = [], [], []
+        for ax, (name, h, v) in zip(self.axes, VIEWS):
+            ax.set_title(name)
+            ax.set_xlabel(style.label(AXIS_NAMES[h], "mm"))
+            ax.set_ylabel(style.label(AXIS_NAMES[v], "mm"))
+            ax.set_xlim(style.data_limits(pts[:, h], pad=0.04))
+            ax.set_ylim(style.data_limits(pts[:, v], pad=0.04))
+            ax.set_aspect("equal", adjustable="box")
+            self.lines.append([ax.plot([], [])[0] for _ in range(shapes.shape[1])])
+            self.edge_lines.append([ax.plot([], [], marker="o", ms=4, zorder=5, **style.OBJECT)[0]
+                                    for _ in range(d["edges"].shape[1])])
+            self.markers.append(ax.plot([], [], ls="none", marker="o", ms=4, mec="white", mew=0.5, zorder=6,
+                                        color=style.STATES[1]["color"])[0])
+        self.fig.legend(handles=legend_handles(), loc="lower center", ncol=4, frameon=False)
+        self.suptitle = self.fig.suptitle("")
+        self.fig.tight_layout(rect=(0, 0.07, 1, 0.95))
+
+    def draw(self, i):
+        d, states = self.d, self.states
+        shapes, edges = d["deflected"][i], d["edges"][i]
+        for k, (_, h, v) in enumerate(VIEWS):
+            for w, line in enumerate(self.lines[k]):
+                s = style.STATES[int(states[w, i])]
+                line.set_data(shapes[w][:, h], shapes[w][:, v])
+                line.set(color=s["color"], ls=s["ls"], lw=s["lw"], zorder=s["zorder"])
+            for e, line in enumerate(self.edge_lines[k]):
+                line.set_data(edges[e][:, h], edges[e][:, v])
+            touching = states[:, i] == 1
+            self.markers[k].set_data(self.contact[touching, i, h], self.contact[touching, i, v])
+        t = d["time"][d["frames"][i]] * style.SCALE["ms"]
+        n_c, n_p = int((states[:, i] == 1).sum()), int((states[:, i] == 2).sum())
+        pitch = np.degrees(d["pitch"][d["pitch_index"]])
+        self.suptitle.set_text(f"Whisker array, head pitch {pitch:+.0f}°: t = {t:5.1f} ms, {n_c} in contact, "
+                               f"{n_p} pushed past (frame {i + 1}/{len(d['frames'])})")
+        return [a for group in self.lines + self.edge_lines for a in group] + self.markers + [self.suptitle]
+
+    def busiest_frame(self):
+        return int(np.argmax((self.states == 1).sum(axis=0)))
+
+
+def main(argv=None):
+    parser = style.parser(__doc__)
+    parser.add_argument("array_h5")
+    parser.add_argument("out")
+    parser.add_argument("--fps", type=float, default=DEFAULT_FPS, help=f"frames per second (default {DEFAULT_FPS})")
+    args = parser.parse_args(argv)
+    if args.fps <= 0:
+        parser.error(f"--fps must be positive, got {args.fps:g}")
+    style.apply()
+    d = load(args.array_h5)
+    out = args.out
     if len(d["frames"]) == 0:
         print("array_animation: no rendered frames (output.render_count = 0)")
         return
-    p = d["pitch_index"]
-    states = d["state"][p][:, d["frames"]]  # [whisker][render]
-    shapes = d["deflected"]  # [render][whisker][node][3]
-    edges = d["edges"]
+    plt.rcParams["axes.grid"] = False
+    anim_fig = ArrayAnimation(d)
+    anim_fig.draw(anim_fig.busiest_frame())
+    # the still keeps the animation's layout (no tight bounding box)
+    save_figure(anim_fig.fig, os.path.splitext(out)[0] + "_frame.png", dpi=args.dpi, bbox_inches=None)
 
-    fig = plt.figure(figsize=(6.4, 5.6), dpi=100)
-    ax = fig.add_subplot(projection="3d")
-    pts = shapes.reshape(-1, 3)
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    centre, half = (lo + hi) / 2, (hi - lo).max() / 2 * 1.05
-    lines = [ax.plot([], [], [], lw=0.8, color="0.7")[0] for _ in range(shapes.shape[1])]
-    edge_lines = [ax.plot([], [], [], lw=2.5, color="black")[0] for _ in range(edges.shape[1])]
-    ax.set_xlim(centre[0] - half, centre[0] + half)
-    ax.set_ylim(centre[1] - half, centre[1] + half)
-    ax.set_zlim(centre[2] - half, centre[2] + half)
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    ax.set_zlabel("z [mm]")
-    ax.view_init(elev=35, azim=-120)
-    title = ax.set_title("")
-
-    def draw(i):
-        for w, line in enumerate(lines):
-            s = int(states[w, i])
-            xyz = shapes[i, w]
-            line.set_data(xyz[:, 0], xyz[:, 1])
-            line.set_3d_properties(xyz[:, 2])
-            line.set_color(COLOURS[s])
-            line.set_linewidth(WIDTHS[s])
-            line.set_zorder(3 if s else 1)
-        for e, line in enumerate(edge_lines):
-            seg = edges[i, e]
-            line.set_data(seg[:, 0], seg[:, 1])
-            line.set_3d_properties(seg[:, 2])
-        t = d["time"][d["frames"][i]] * 1e3
-        n_c = int((states[:, i] == 1).sum())
-        n_p = int((states[:, i] == 2).sum())
-        title.set_text(f"t = {t:5.1f} ms   pitch {np.degrees(d['pitch'][p]):+.0f}°   "
-                       f"contact {n_c} (red), pushed past {n_p} (green)")
-        return lines + edge_lines + [title]
-
-    best = int(np.argmax((states == 1).sum(axis=0)))
-    draw(best)
-    save_figure(fig, os.path.splitext(out)[0] + "_frame.png")
-
-    anim = animation.FuncAnimation(fig, draw, frames=len(d["frames"]), blit=False)
+    anim_fig.fig.set_dpi(args.dpi)  # the video frames: same pixels as the still
+    anim = animation.FuncAnimation(anim_fig.fig, anim_fig.draw, frames=len(d["frames"]), blit=False)
     if out.endswith(".mp4") and animation.FFMpegWriter.isAvailable():
-        save_animation(anim, out, animation.FFMpegWriter(fps=12, bitrate=1800))
+        save_animation(anim, out, animation.FFMpegWriter(fps=args.fps, bitrate=2400))
     else:
         if out.endswith(".mp4"):
             out = out[:-4] + ".gif"
             print("array_animation: ffmpeg not found, writing GIF instead")
-        save_animation(anim, out, animation.PillowWriter(fps=12))
+        save_animation(anim, out, animation.PillowWriter(fps=args.fps))
     print("wrote", out)
 
 

@@ -1,52 +1,50 @@
 #!/usr/bin/python3
-"""Base-signal traces per whisker (first head pitch): F_T, M_B, M_D, F_x and the contact state, one
-coloured line per whisker that touched the object.
+"""Base-signal traces per whisker (first head pitch): F_T, M_B, M_D, F_x and eq. (7) z_error while in
+contact, one line per whisker that touched the object (Okabe–Ito colours, then other dashes). M_D is unwrapped
+within each contact.
 
-usage: array_traces.py ARRAY_H5 OUT.png
+usage: array_traces.py ARRAY_H5 OUT.png [--dpi DPI]
 """
-import sys
-
 import h5py
-import matplotlib
+import numpy as np
+import style
+from matplotlib import pyplot as plt
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from atomic_save import save_figure  # noqa: E402
+ROWS = (("FT", "mN", "$F_T$"), ("MB", "µN·m", "$M_B$"), ("MD", "deg", "$M_D$"), ("Fx", "mN", "$F_x$"),
+        ("z_error", "mm", "eq. (7) $z_{error}$"))
 
 
-def main():
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    with h5py.File(sys.argv[1], "r") as f:
-        t = f["time"][()] * 1e3
-        names = [n.decode() if isinstance(n, bytes) else n for n in f["whisker"][()]]
-        state = f["state"][0]
-        FT = f["FT"][0] * 1e3
-        MB = f["MB"][0] * 1e6
-        MD = np.degrees(f["MD"][0])
-        Fx = f["force_B"][0][..., 0] * 1e3
-        zerr = f["z_error"][0] * 1e3
-        pitch = np.degrees(f["pitch"][0])
-    touched = [w for w in range(len(names)) if (state[w] == 1).any()]
-    fig, axes = plt.subplots(5, 1, figsize=(8, 10), sharex=True)
-    cmap = plt.get_cmap("tab20")
+def load(path):
+    with h5py.File(path, "r") as f:
+        return dict(time=f["time"][()], names=[n.decode() if isinstance(n, bytes) else n for n in f["whisker"][()]],
+                    state=f["state"][0], FT=f["FT"][0], MB=f["MB"][0], MD=f["MD"][0], Fx=f["force_B"][0][..., 0],
+                    z_error=f["z_error"][0], pitch=f["pitch"][0])
+
+
+def build(d):
+    t = d["time"] * style.SCALE["ms"]
+    touched = [w for w in range(len(d["names"])) if (d["state"][w] == 1).any()]
+    fig, axes = plt.subplots(len(ROWS), 1, figsize=(style.PAPER_WIDTH_IN, 8.5), sharex=True)
+    styles = style.series_styles()
     for k, w in enumerate(touched):
-        c = cmap(k % 20)
-        on = state[w] == 1
-        for ax, y in zip(axes[:4], (FT, MB, MD, Fx)):
-            ax.plot(t, np.where(on, y[w], np.nan), color=c, lw=1.2, label=names[w] if ax is axes[0] else None)
-        axes[4].plot(t, np.where(on, zerr[w], np.nan), color=c, lw=1.2)
-    for ax, label in zip(axes, ("$F_T$ [mN]", "$M_B$ [µN·m]", "$M_D$ [deg]", "$F_x$ [mN]", "eq. (7) $z_{error}$ [mm]")):
-        ax.set_ylabel(label)
-        ax.grid(alpha=0.3)
-    axes[-1].set_xlabel("time [ms]")
-    axes[0].set_title(f"Base signals during contact, head pitch {pitch:+.0f}° ({len(touched)} whiskers touched)")
+        on = d["state"][w] == 1
+        for ax, (name, unit, _) in zip(axes, ROWS):
+            y = d[name][w] * style.SCALE[unit]
+            if name == "MD":
+                y = style.unwrap_deg(y, style.contact_runs(on))
+            ax.plot(t, np.where(on, y, np.nan), lw=1.2, label=d["names"][w], **styles[k % len(styles)])
+    for ax, (_, unit, quantity) in zip(axes, ROWS):
+        ax.set_ylabel(style.label(quantity, unit))
+    axes[-1].set_xlabel(style.label("time", "ms"))
+    axes[0].set_title(f"Base signals during contact, head pitch {np.degrees(d['pitch']):+.0f}° "
+                      f"({len(touched)} whiskers touched)", pad=8 + 12 * ((len(touched) + 7) // 8))
     if touched:
-        axes[0].legend(ncol=6, fontsize=7, loc="upper left")
-    fig.tight_layout()
-    save_figure(fig, sys.argv[2], dpi=110)
-    print("wrote", sys.argv[2])
+        axes[0].legend(ncol=8, fontsize=7, loc="lower left", bbox_to_anchor=(0, 1.02), frameon=False)
+    return fig, axes
+
+
+def main(argv=None):
+    style.one_png_main(__doc__, load, build, argv)
 
 
 if __name__ == "__main__":

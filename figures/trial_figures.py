@@ -1,22 +1,37 @@
 #!/usr/bin/env python3
 """Figures of `vibrissa trial` mirroring Huet & Hartmann 2016 Figs. 2b-f, 3a-e and 4b.
 
-usage: trial_figures.py FRAMES.h5 SUMMARY.json OUTDIR
-Reads the per-frame table written by `vibrissa trial` (group /frames) and its summary.json.
+usage: trial_figures.py FRAMES.h5 SUMMARY.json OUTDIR [--window START_S,END_S | --whisk N] [--dpi DPI]
+
+Reads the per-frame table written by `vibrissa trial` (group /frames) and its summary.json. Fit lines and
+their numbers are those of summary.json (never refitted here). Time series (Figs. 2b-d, 3a, 3b) show a time
+window: --window START_S,END_S (seconds, trial clock), --whisk N (contact period N, from 1), or by default the
+whole trial if it lasts at most OVERVIEW_MAX_S, else WINDOW_S from the first contact. fig3b_per_whisk.png
+overlays every whisk of the trial, aligned at contact onset. F_D and M_D are unwrapped within each whisk.
 """
 import json
 import os
 import sys
 
 import h5py
-import matplotlib
+import numpy as np
+import style
+from matplotlib import pyplot as plt
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from atomic_save import save_figure  # noqa: E402
+OVERVIEW_MAX_S = 2.0  # longer trials: time series in a window, plus the per-whisk overlay
+WINDOW_S = 1.0
+WHISK_PAD = 0.25  # --whisk: margin on each side, as a fraction of the contact period's duration
 
-CP, EDGE, FRIC = "tab:cyan", "tab:purple", "tab:orange"
+# Rows of the time-series figures: (column without mode prefix, unit, label).
+SHAPE_ROWS = (("shape_error", "mm", "mean shape error"), ("height", "mm", "contact height"),
+              ("s_applied", "mm", "$s_{applied}$"))
+WORLD_ROWS = (("Fx_world", "mN", "$F_x$"), ("Fy_world", "mN", "$F_y$"), ("Fz_world", "mN", "$F_z$"),
+              ("Mx_world", "µN·m", "$M_x$"), ("My_world", "µN·m", "$M_y$"), ("Mz_world", "µN·m", "$M_z$"))
+WHISKER_ROWS = (("Fx_B", "mN", "$F_x$"), ("FT", "mN", "$F_T$"), ("FD_deg", "deg", "$F_D$"),
+                ("Mx_B", "µN·m", "$M_x$"), ("MB", "µN·m", "$M_B$"), ("MD_deg", "deg", "$M_D$"))
+OVERLAY_ROWS = (("FT", "mN", "$F_T$"), ("MB", "µN·m", "$M_B$"), ("FD_deg", "deg", "$F_D$"),
+                ("MD_deg", "deg", "$M_D$"))
+ANGLES = ("FD_deg", "MD_deg")  # already in degrees in frames.h5
 
 
 def load(path):
@@ -25,150 +40,270 @@ def load(path):
         return {k: g[k][()] for k in g.keys()}
 
 
-def col(d, name):
-    return d[name] if name in d else None
+def present_modes(d):
+    return [m for m in style.MODES if m["prefix"] + "s_applied" in d]
 
 
-def fit_line(ax, x, y):
+def signal(d, modes, mode, name, unit):
+    """Column `name` of `mode` in display units; angles unwrapped per contact period, the modes after the
+    first one drawn on the first one's branch."""
+    v = d[mode["prefix"] + name]
+    if name not in ANGLES:
+        return v * style.SCALE[unit]
+    ref = None
+    if mode is not modes[0]:
+        ref = style.unwrap_deg(d[modes[0]["prefix"] + name], d["period"])
+    return style.unwrap_deg(v, d["period"], reference=ref)
+
+
+# --- time windows ---------------------------------------------------------------------------------------
+
+def parse_window(text):
+    try:
+        start, end = (float(v) for v in text.split(","))
+    except ValueError:
+        sys.exit(f"trial_figures: --window must be START_S,END_S in seconds, got '{text}'")
+    if not start < end:
+        sys.exit(f"trial_figures: --window start must be before end, got '{text}'")
+    return start, end
+
+
+def select_window(d, window=None, whisk=None):
+    """(start, end, description) of the time series to draw [s]."""
+    t = d["time"]
+    if whisk is not None:
+        periods = int(np.max(d["period"])) + 1
+        if not 1 <= whisk <= periods:
+            sys.exit(f"trial_figures: --whisk {whisk}: the trial has {periods} contact periods (1..{periods})")
+        tp = t[d["period"] == whisk - 1]
+        pad = WHISK_PAD * max(tp[-1] - tp[0], 0.01)
+        return tp[0] - pad, tp[-1] + pad, f"whisk {whisk} of {periods}"
+    if window is not None:
+        if window[1] < t[0] or window[0] > t[-1]:
+            sys.exit(f"trial_figures: --window {window[0]},{window[1]} s lies outside the trial "
+                     f"({t[0]:g}-{t[-1]:g} s)")
+        return window[0], window[1], f"t = {window[0]:g}–{window[1]:g} s"
+    if t[-1] - t[0] <= OVERVIEW_MAX_S:
+        return t[0], t[-1], "whole trial"
+    contact = t[d["period"] >= 0]
+    start = max(t[0], (contact[0] if contact.size else t[0]) - 0.05 * WINDOW_S)
+    return start, start + WINDOW_S, f"t = {start:.2f}–{start + WINDOW_S:.2f} s (first {WINDOW_S:g} s of contact)"
+
+
+def time_axis(start, end):
+    """Unit in which to show times of the span [start, end] s."""
+    return "ms" if end - start <= 5.0 else "s"
+
+
+# --- drawing pieces -------------------------------------------------------------------------------------
+
+def mode_legend(fig, modes):
+    style.legend_below(fig, [plt.Line2D([], [], **style.mode_line(m)) for m in modes])
+
+
+def time_series(d, modes, rows, window, title):
+    start, end, what = window
+    unit = time_axis(start, end)
+    sel = (d["time"] >= start) & (d["time"] <= end)
+    t = d["time"][sel] * style.SCALE[unit]
+    fig, axes = plt.subplots(len(rows), 1, figsize=(style.PAPER_WIDTH_IN, 1.45 * len(rows) + 0.9), sharex=True)
+    for ax, (name, u, quantity) in zip(axes, rows):
+        drawn = False
+        for m in modes:
+            if m["prefix"] + name in d:
+                y = signal(d, modes, m, name, u)[sel]
+                ax.plot(t, y, **style.mode_line(m))
+                drawn |= bool(np.isfinite(y).any())
+        if not drawn:
+            ax.text(0.5, 0.5, "no data in this span" + (" (the trial has no tracked shapes)"
+                                                        if name == "shape_error" else ""),
+                    transform=ax.transAxes, ha="center", va="center", color=style.GREY)
+            ax.set_yticks([])
+        ax.set_ylabel(style.label(quantity, u))
+    axes[-1].set_xlabel(style.label("time", unit))
+    axes[-1].set_xlim(start * style.SCALE[unit], end * style.SCALE[unit])
+    fig.suptitle(f"{title} — {what}")
+    mode_legend(fig, modes)
+    return fig
+
+
+def fit_text(name, fit):
+    sign = "+" if fit["intercept"] >= 0 else "−"
+    return (f"{name}: y = {fit['slope']:.3f}x {sign} {abs(fit['intercept']) * style.SCALE['mm']:.3f} mm\n"
+            f"$r^2$ = {fit['r2']:.3f}, about identity {fit['r2_identity']:.3f}, n = {fit['points']}")
+
+
+def draw_fit(ax, fit, xlim, name, **line):
+    """The line y = slope·x + intercept of a summary.json fit (SI) across xlim [mm]; returns the Line2D."""
+    xs = np.asarray(xlim, dtype=float)
+    ys = fit["slope"] * xs + fit["intercept"] * style.SCALE["mm"]
+    (ln,) = ax.plot(xs, ys, label=fit_text(name, fit), **line)
+    ln.set_gid("fit")
+    return ln
+
+
+def scatter_fit(x, y, used, fits, labels, title):
+    """Fig. 2e/2f/4b: predicted vs measured [mm] with the summary's fit(s) and the identity line; axes span
+    the data. `used` marks the points the fit used; the others are drawn as excluded. A fit that is None
+    is left out."""
+    fig, ax = plt.subplots(figsize=(0.6 * style.PAPER_WIDTH_IN, 0.6 * style.PAPER_WIDTH_IN + 1.6))
     ok = np.isfinite(x) & np.isfinite(y)
-    if ok.sum() < 3:
-        return
-    m, b = np.polyfit(x[ok], y[ok], 1)
-    lo, hi = np.nanmin(np.r_[x[ok], y[ok]]), np.nanmax(np.r_[x[ok], y[ok]])
-    xs = np.array([lo, hi])
-    ax.plot(xs, xs, "k-", lw=1, label="identity")
-    ax.plot(xs, m * xs + b, "r-", lw=1.2, label=f"fit y = {m:.2f}x + {b:.2f}")
-    ax.legend(fontsize=8)
+    ax.scatter(x[ok & used], y[ok & used], s=7, alpha=0.45, lw=0, color=style.DATA["color"],
+               marker=style.DATA["marker"], label=f"frames in the fit ({int((ok & used).sum())})", gid="used")
+    if (ok & ~used).any():
+        ax.scatter(x[ok & ~used], y[ok & ~used], s=12, lw=0.7, color=style.EXCLUDED["color"],
+                   marker=style.EXCLUDED["marker"], label=f"not fitted: first/last 2 frames of a contact "
+                   f"({int((ok & ~used).sum())})", gid="excluded")
+    xlim, ylim = style.data_limits(x[ok]), style.data_limits(y[ok])
+    ax.plot(xlim, xlim, label="identity", **style.IDENTITY)
+    second = dict(style.FIT, color=style.OKABE_ITO["bluish_green"], ls=(0, (1, 1)), lw=1.8)
+    for fit, name, line in zip(fits, labels, (style.FIT, second)):
+        if fit:
+            draw_fit(ax, fit, xlim, name, **line)
+    ax.set_xlim(xlim)
+    ax.set_ylim(ylim)
+    ax.set_title(title)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=7, frameon=False)
+    return fig, ax
 
 
-def save(fig, out, name):
-    fig.tight_layout()
-    save_figure(fig, os.path.join(out, name), dpi=110)
-    plt.close(fig)
+def z_error_figure(d, summary, eq, title):
+    zs = (summary.get("z_error") or {}).get(eq) or {}
+    outliers = zs.get("outliers", 0)
+    fits, labels = [zs.get("all")], ["fit"]
+    if outliers:  # else the same fit
+        fits.append(zs.get("without_iqr_outliers"))
+        labels.append(f"fit without the {outliers} IQR outliers")
+    fig, ax = scatter_fit(d["z_error"] * style.SCALE["mm"], d["z_error_" + eq] * style.SCALE["mm"],
+                          d["period_edge"] < 0.5, fits, labels, title)
+    ax.set_xlabel(style.label("measured $z_{error} = z_{edge} - z_{cp}$", "mm"))
+    ax.set_ylabel(style.label(f"$z_{{error}}$ predicted by eq. ({eq[2:]})", "mm"))
+    return fig
 
 
-def main():
-    frames_path, summary_path, out = sys.argv[1:4]
-    os.makedirs(out, exist_ok=True)
-    d = load(frames_path)
-    with open(summary_path) as f:
-        summary = json.load(f)
-    t_ms = d["time"] * 1e3
-    modes = [(p, c, n) for p, c, n in (("cp_", CP, "contact-point mode"), ("edge_", EDGE, "edge mode"),
-                                         ("fric_", FRIC, "frictional edge mode")) if p + "s_applied" in d]
+def kinematic_figure(d, summary):
+    fit = (summary.get("kinematic_prediction") or {}).get("fit")
+    fig, ax = scatter_fit(d["tracked_height"] * style.SCALE["mm"], d["kinematic_height"] * style.SCALE["mm"],
+                          d["period"] >= 0, (fit,), ("fit",),
+                          "Fig. 2f: contact height predicted from non-contact kinematics")
+    ax.set_xlabel(style.label("tracked contact height", "mm"))
+    ax.set_ylabel(style.label("kinematic prediction", "mm"))
+    return fig
 
-    # Fig. 2b-d: shape error, contact height, s_applied.
-    fig, axes = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
-    for p, c, n in modes:
-        axes[0].plot(t_ms, d[p + "shape_error"] * 1e3, color=c, lw=1, label=n)
-        axes[1].plot(t_ms, d[p + "height"] * 1e3, color=c, lw=1, label=n)
-        axes[2].plot(t_ms, d[p + "s_applied"] * 1e3, color=c, lw=1, label=n)
-    axes[0].set_ylabel("mean shape error [mm]")
-    axes[0].set_title("Fig. 2b: shape error (NaN if no tracked shapes)", fontsize=9)
-    axes[1].set_ylabel("contact height [mm]")
-    axes[1].set_title("Fig. 2c: vertical location of contact", fontsize=9)
-    axes[2].set_ylabel("s_applied [mm]")
-    axes[2].set_title("Fig. 2d: arc length of contact", fontsize=9)
-    axes[2].set_xlabel("time [ms]")
-    axes[0].legend(fontsize=8)
-    save(fig, out, "fig2bcd_shape_height_arclength.png")
 
-    # Fig. 2e / 4b: z_error vs eqs. (6), (7).
+def per_whisk_figure(d, modes):
+    """Every whisk of the trial overlaid, time from its first contact frame (the full-trial overview)."""
+    periods = int(np.max(d["period"])) + 1
+    fig, axes = plt.subplots(2, 2, figsize=(style.PAPER_WIDTH_IN, 5.6), sharex=True)
+    axes = axes.ravel()
+    alpha = float(np.clip(6.0 / max(periods, 1), 0.12, 0.8))
+    for ax, (name, unit, quantity) in zip(axes, OVERLAY_ROWS):
+        for m in modes:
+            v = signal(d, modes, m, name, unit)
+            for p in range(periods):
+                idx = np.flatnonzero(d["period"] == p)
+                ax.plot((d["time"][idx] - d["time"][idx[0]]) * style.SCALE["ms"], v[idx], color=m["color"],
+                        ls=m["ls"], lw=m["lw"] * 0.6, alpha=alpha, zorder=m["zorder"])
+        ax.set_ylabel(style.label(quantity, unit))
+    for ax in axes[2:]:
+        ax.set_xlabel(style.label("time since contact onset", "ms"))
+    fig.suptitle(f"Fig. 3b per whisk: all {periods} contact periods overlaid, aligned at contact onset")
+    mode_legend(fig, modes)
+    return fig
+
+
+def friction_figure(d, summary, window):
+    """Fig. 3c over the time series' span; Figs. 3d, 3e over the whole trial (the summary's analysis)."""
+    start, end, what = window
+    t = d["time"]
+    sel = (t >= start) & (t <= end)
+    mu, outl, used = d["mu"], (d["mu_outlier"] > 0.5) & sel, (d["mu_used"] > 0.5) & sel
+    fr = summary.get("friction") or {}
+    unit = time_axis(start, end)
+    fig, axes = plt.subplots(1, 3, figsize=(style.PAPER_WIDTH_IN, 2.8))
+    ax = axes[0]
+    ax.plot(t[used] * style.SCALE[unit], mu[used], ls="none", marker="o", ms=2, color=style.OKABE_ITO["blue"],
+            label="used")
+    ax.plot(t[outl] * style.SCALE[unit], np.minimum(mu[outl], 3.0), ls="none", marker="x", ms=3, mew=0.6,
+            color=style.OKABE_ITO["vermillion"], label="outlier ($F_N$ < 0.1 mN)")
+    ax.set_xlabel(style.label("time", unit))
+    ax.set_ylabel("μ")
+    ax.set_ylim(0, 3.1)
+    ax.set_xlim(start * style.SCALE[unit], end * style.SCALE[unit])
+    ax.set_title(f"Fig. 3c: μ (> 3 drawn at 3)\n{what}")
+    ax.legend(loc="upper right")
+    ax = axes[1]
+    fn = d["cp_normal_force"] * style.SCALE["mN"]
+    ok = np.isfinite(mu) & np.isfinite(fn)
+    ax.plot(fn[ok], np.minimum(mu[ok], 3.0), ls="none", marker="o", ms=2, color=style.GREY, label="frames")
+    centers = np.array(fr.get("normal_force_bins_N", []), dtype=float) * style.SCALE["mN"]
+    means = np.array([np.nan if v is None else v for v in fr.get("mu_mean_per_bin", [])], dtype=float)
+    sds = np.array([np.nan if v is None else v for v in fr.get("mu_sd_per_bin", [])], dtype=float)
+    if centers.size:
+        ax.plot(centers, means, color=style.OKABE_ITO["sky_blue"], lw=2, label="mean per bin")
+        ax.fill_between(centers, means - sds, means + sds, color=style.OKABE_ITO["sky_blue"], alpha=0.3, lw=0,
+                        label="± sd")
+    ax.axvline(0.1, **style.IDENTITY, label="0.1 mN")
+    ax.set_xlim(0, style.data_limits(fn[ok])[1])
+    ax.set_ylim(0, 3.1)
+    ax.set_xlabel(style.label("normal force $F_N$", "mN"))
+    ax.set_ylabel("μ")
+    ax.set_title("Fig. 3d: μ vs normal force\nwhole trial")
+    ax.legend(loc="upper right")
+    ax = axes[2]
+    edges = np.array(fr.get("histogram_edges", []), dtype=float)
+    counts = np.array(fr.get("histogram_counts", []), dtype=float)
+    if counts.size:
+        ax.bar(edges[:-1], counts, width=np.diff(edges), align="edge", color=style.OKABE_ITO["blue"],
+               edgecolor="white", lw=0.5, label="frames used")
+    if fr.get("median") is not None:
+        ax.axvline(fr["median"], color=style.OKABE_ITO["vermillion"], ls="--", lw=1.5,
+                   label=f"median {fr['median']:.3f}")
+    style.integer_ticks(ax.yaxis)
+    ax.set_xlabel("μ")
+    ax.set_ylabel("frames")
+    ax.set_title("Fig. 3e: μ, outliers excluded\nwhole trial")
+    ax.legend(loc="upper right")
+    return fig
+
+
+def build(d, summary, window=None, whisk=None):
+    """{file name: Figure} of every figure the data allow."""
+    modes = present_modes(d)
+    span = select_window(d, window, whisk)
+    figs = {
+        "fig2bcd_shape_height_arclength.png": time_series(
+            d, modes, SHAPE_ROWS, span, "Figs. 2b–d: shape error, contact height, arc length of contact"),
+        "fig3a_world_signals.png": time_series(d, modes, WORLD_ROWS, span, "Fig. 3a: world frame"),
+        "fig3b_whisker_signals.png": time_series(d, modes, WHISKER_ROWS, span, "Fig. 3b: whisker frame"),
+    }
+    if (d["period"] >= 0).any():
+        figs["fig3b_per_whisk.png"] = per_whisk_figure(d, modes)
     if "z_error" in d:
-        for eq, name, title in (("z_error_eq6", "fig2e_z_error_eq6.png", "Fig. 2e: eq. (6)"),
-                                ("z_error_eq7", "fig4b_z_error_eq7.png", "Fig. 4b: eq. (7)")):
-            fig, ax = plt.subplots(figsize=(5, 5))
-            x, y = d["z_error"] * 1e3, d[eq] * 1e3
-            ax.scatter(x, y, s=6, alpha=0.3, color="k")
-            fit_line(ax, x, y)
-            ax.set_xlabel("measured z_error = z_edge - z_cp [mm]")
-            ax.set_ylabel("predicted z_error [mm]")
-            ax.set_title(title, fontsize=10)
-            save(fig, out, name)
-
-    # Fig. 2f: kinematic prediction of contact height.
-    if "tracked_height" in d:
-        fig, ax = plt.subplots(figsize=(5, 5))
-        x, y = d["tracked_height"] * 1e3, d["kinematic_height"] * 1e3
-        ax.scatter(x, y, s=6, alpha=0.3, color="k")
-        fit_line(ax, x, y)
-        ax.set_xlabel("tracked contact height [mm]")
-        ax.set_ylabel("kinematic prediction [mm]")
-        ax.set_title("Fig. 2f: non-contact kinematics projected front-on", fontsize=10)
-        save(fig, out, "fig2f_kinematic_prediction.png")
-
-    # Fig. 3a: world forces and moments.
-    fig, axes = plt.subplots(6, 1, figsize=(8, 10), sharex=True)
-    names = [("Fx_world", 1e3, "Fx [mN]"), ("Fy_world", 1e3, "Fy [mN]"), ("Fz_world", 1e3, "Fz [mN]"),
-             ("Mx_world", 1e6, "Mx [uN m]"), ("My_world", 1e6, "My [uN m]"), ("Mz_world", 1e6, "Mz [uN m]")]
-    for ax, (k, s, label) in zip(axes, names):
-        for p, c, n in modes:
-            ax.plot(t_ms, d[p + k] * s, color=c, lw=1, label=n)
-        ax.set_ylabel(label, fontsize=8)
-    axes[0].set_title("Fig. 3a: forces and moments, world frame", fontsize=10)
-    axes[0].legend(fontsize=7)
-    axes[-1].set_xlabel("time [ms]")
-    save(fig, out, "fig3a_world_signals.png")
-
-    # Fig. 3b: whisker-frame signals.
-    fig, axes = plt.subplots(6, 1, figsize=(8, 10), sharex=True)
-    names = [("Fx_B", 1e3, "Fx [mN]"), ("FT", 1e3, "F_T [mN]"), ("FD_deg", 1, "F_D [deg]"),
-             ("Mx_B", 1e6, "Mx [uN m]"), ("MB", 1e6, "M_B [uN m]"), ("MD_deg", 1, "M_D [deg]")]
-    for ax, (k, s, label) in zip(axes, names):
-        for p, c, n in modes:
-            v = d[p + k] * s
-            if p != "fric_" or "cp_" + k not in d:
-                ax.plot(t_ms, v, color=c, lw=1, label=n)
-            else:
-                ax.plot(t_ms, v, color=c, lw=0.8, ls="--", label=n)
-        ax.set_ylabel(label, fontsize=8)
-    axes[0].set_title("Fig. 3b: base signals, whisker-centred frame", fontsize=10)
-    axes[0].legend(fontsize=7)
-    axes[-1].set_xlabel("time [ms]")
-    save(fig, out, "fig3b_whisker_signals.png")
-
-    # Fig. 3c-e: friction coefficient.
+        figs["fig2e_z_error_eq6.png"] = z_error_figure(d, summary, "eq6", "Fig. 2e: eq. (6), contact-point mode")
+        figs["fig4b_z_error_eq7.png"] = z_error_figure(d, summary, "eq7", "Fig. 4b: eq. (7), edge mode only")
+    if "tracked_height" in d and np.isfinite(d["kinematic_height"]).any():
+        figs["fig2f_kinematic_prediction.png"] = kinematic_figure(d, summary)
     if "mu" in d:
-        mu, outl, used = d["mu"], d["mu_outlier"] > 0.5, d["mu_used"] > 0.5
-        fn = d["cp_normal_force"] * 1e3
-        fig, axes = plt.subplots(1, 3, figsize=(14, 4))
-        ax = axes[0]
-        ax.plot(t_ms[used], mu[used], ".", ms=3, color="tab:blue", label="used")
-        ax.plot(t_ms[outl], np.minimum(mu[outl], 3.0), ".", ms=3, color="red", label="outlier (F_N < 0.1 mN)")
-        ax.set_xlabel("time [ms]")
-        ax.set_ylabel("mu")
-        ax.set_ylim(0, 3.1)
-        ax.set_title("Fig. 3c: mu over time (>3 plotted at 3)", fontsize=10)
-        ax.legend(fontsize=8)
-        ax = axes[1]
-        ok = np.isfinite(mu)
-        ax.plot(fn[ok], np.minimum(mu[ok], 3.0), ".", ms=3, color="gray", alpha=0.5)
-        fr = summary.get("friction", {})
-        centers = np.array(fr.get("normal_force_bins_N", [])) * 1e3
-        means = np.array([np.nan if v is None else v for v in fr.get("mu_mean_per_bin", [])], dtype=float)
-        sds = np.array([np.nan if v is None else v for v in fr.get("mu_sd_per_bin", [])], dtype=float)
-        if centers.size:
-            ax.plot(centers, means, "-", color="tab:cyan", label="mean")
-            ax.fill_between(centers, means - sds, means + sds, color="lightblue", alpha=0.5, label="± sd")
-        ax.axvline(0.1, color="k", lw=1)
-        ax.set_xlabel("normal force [mN]")
-        ax.set_ylabel("mu")
-        ax.set_ylim(0, 3.1)
-        ax.set_title("Fig. 3d: mu vs normal force", fontsize=10)
-        ax.legend(fontsize=8)
-        ax = axes[2]
-        edges = np.array(fr.get("histogram_edges", []))
-        counts = np.array(fr.get("histogram_counts", []))
-        if counts.size:
-            ax.bar(edges[:-1], counts, width=np.diff(edges), align="edge", color="tab:blue", edgecolor="k")
-        med = fr.get("median")
-        if med is not None:
-            ax.axvline(med, color="r", label=f"median {med:.3f}")
-            ax.legend(fontsize=8)
-        ax.set_xlabel("mu")
-        ax.set_ylabel("frames")
-        ax.set_title("Fig. 3e: histogram of mu (outliers excluded)", fontsize=10)
-        save(fig, out, "fig3cde_friction.png")
+        figs["fig3cde_friction.png"] = friction_figure(d, summary, span)
+    return figs
+
+
+def main(argv=None):
+    parser = style.parser(__doc__)
+    parser.add_argument("frames_h5")
+    parser.add_argument("summary_json")
+    parser.add_argument("outdir")
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("--window", type=parse_window, help="START_S,END_S: time series over this window [s]")
+    group.add_argument("--whisk", type=int, help="time series over contact period N (from 1)")
+    args = parser.parse_args(argv)
+    style.apply()
+    d = load(args.frames_h5)
+    with open(args.summary_json) as f:
+        summary = json.load(f)
+    for name, fig in build(d, summary, args.window, args.whisk).items():
+        style.save(fig, os.path.join(args.outdir, name), dpi=args.dpi)
 
 
 if __name__ == "__main__":

@@ -106,16 +106,26 @@ class TrialResult(_NamedArrays):
         self._outputs.write(str(directory))
         return directory
 
-    def figures(self, directory):
+    def figures(self, directory, window=None, whisk=None, dpi=None):
         """Draws the figures of ``vibrissa trial`` (figures/trial_figures.py, matplotlib and h5py) into
-        `directory`; returns the PNG paths. Raises RuntimeError with the script's output if it fails."""
+        `directory`; returns the PNG paths. ``window=(start_s, end_s)`` or ``whisk=N`` (contact period, from
+        1) choose the span of the time series and ``dpi`` the resolution, as ``vibrissa trial --window``,
+        ``--whisk`` and ``--figure-dpi`` do. Raises RuntimeError with the script's output if it fails."""
         directory = pathlib.Path(directory)
         directory.mkdir(parents=True, exist_ok=True)
+        flags = []
+        if window is not None:
+            start, end = (float(v) for v in window)
+            flags += ["--window", f"{start!r},{end!r}"]
+        if whisk is not None:
+            flags += ["--whisk", str(int(whisk))]
+        if dpi is not None:
+            flags += ["--dpi", str(int(dpi))]
         with tempfile.TemporaryDirectory() as tmp:
             self.write(tmp)
             done = subprocess.run([sys.executable, str(_figure_script("trial_figures.py")),
                                    os.path.join(tmp, "frames.h5"), os.path.join(tmp, "summary.json"),
-                                   str(directory)], capture_output=True, text=True,
+                                   str(directory), *flags], capture_output=True, text=True,
                                   env=dict(os.environ, MPLBACKEND="Agg"))
         if done.returncode != 0:
             raise RuntimeError(f"trial_figures.py failed (exit {done.returncode}):\n{done.stderr}")

@@ -1,0 +1,177 @@
+"""The one place for how vibrissa's figures look: palette, line styles, quantity labels with units, paper
+sizes, integer ticks for counts, angle unwrapping and saving. Every script in figures/ draws through it.
+
+Colours are the Okabe–Ito palette (Okabe & Ito 2008, "Color Universal Design"), safe for the common forms of
+colour blindness; every series that shares an axis with another also differs in line style, width or marker,
+so the figures stay readable in greyscale print. Data are SI inside; SCALE and UNIT convert for display.
+"""
+import argparse
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from atomic_save import save_figure  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
+
+# Okabe–Ito, in the published order.
+OKABE_ITO = {
+    "black": "#000000",
+    "orange": "#E69F00",
+    "sky_blue": "#56B4E9",
+    "bluish_green": "#009E73",
+    "yellow": "#F0E442",
+    "blue": "#0072B2",
+    "vermillion": "#D55E00",
+    "reddish_purple": "#CC79A7",
+}
+GREY = "#BBBBBB"  # context (non-data) elements: free whiskers, excluded points
+SEQUENTIAL_CMAP = "cividis"  # heat maps: perceptually uniform, monotonic in greyscale, CVD-safe
+
+# Simulation modes of `vibrissa trial` (paper Fig. 2/3: contact-point cyan, edge purple). Contact-point mode
+# is drawn first and widest, the others on top of it with dashes, so coinciding lines stay visible.
+MODES = (
+    dict(prefix="cp_", key="contact_point", name="contact-point mode",
+         color=OKABE_ITO["sky_blue"], ls="-", lw=2.4, marker="o", zorder=2),
+    dict(prefix="edge_", key="edge", name="edge mode",
+         color=OKABE_ITO["reddish_purple"], ls="-.", lw=1.3, marker="s", zorder=3),
+    dict(prefix="fric_", key="frictional_edge", name="frictional edge mode",
+         color=OKABE_ITO["vermillion"], ls=(0, (4, 2)), lw=1.1, marker="^", zorder=4),
+)
+
+# Series of a scatter plot with its fit (Figs. 2e, 2f, 4b, 3c).
+DATA = dict(color=OKABE_ITO["blue"], marker="o")
+EXCLUDED = dict(color=GREY, marker="x")
+FIT = dict(color=OKABE_ITO["vermillion"], ls="-", lw=1.6)
+IDENTITY = dict(color=OKABE_ITO["black"], ls="--", lw=1.0)
+
+# Contact states of `vibrissa array` (state 0 free, 1 contact, 2 pushed past). Greyscale: free light and
+# thin, contact mid-dark, thick and solid with a filled marker at the contact point, pushed past darkest
+# and dashed.
+STATES = {
+    0: dict(name="free", color=GREY, ls="-", lw=0.7, zorder=1),
+    1: dict(name="in contact", color=OKABE_ITO["vermillion"], ls="-", lw=2.4, zorder=3),
+    2: dict(name="pushed past", color=OKABE_ITO["blue"], ls=(0, (3, 1.5)), lw=1.6, zorder=2),
+}
+OBJECT = dict(color=OKABE_ITO["black"], lw=2.5)
+
+# Display units: value_shown = value_SI * SCALE[unit].
+SCALE = {"mN": 1e3, "µN·m": 1e6, "mm": 1e3, "ms": 1e3, "s": 1.0, "deg": 180.0 / np.pi, "": 1.0}
+
+PAPER_WIDTH_IN = 7.0  # a two-column journal figure
+DEFAULT_DPI = 150
+
+
+def label(quantity, unit=""):
+    """Axis label "quantity [unit]" (quantities in mathtext where they are symbols, e.g. "$M_B$")."""
+    return f"{quantity} [{unit}]" if unit else quantity
+
+
+def mode_line(mode):
+    """Line2D keyword arguments of a simulation mode (an entry of MODES)."""
+    return dict(color=mode["color"], ls=mode["ls"], lw=mode["lw"], zorder=mode["zorder"], label=mode["name"])
+
+
+def series_styles():
+    """Colour and line-style pairs for many series of equal rank (one per whisker): the seven Okabe–Ito
+    colours, then the same colours with other dashes, so neighbours differ in greyscale too."""
+    colours = [c for k, c in OKABE_ITO.items() if k != "yellow"]  # yellow is invisible on white
+    dashes = ["-", "--", ":", "-."]
+    return [dict(color=c, ls=d) for d in dashes for c in colours]
+
+
+def apply():
+    """Matplotlib defaults for paper figures (sizes in points, readable at 7 in wide)."""
+    plt.rcParams.update({
+        "font.size": 9, "axes.titlesize": 10, "axes.labelsize": 9, "legend.fontsize": 8,
+        "xtick.labelsize": 8, "ytick.labelsize": 8, "axes.grid": True, "grid.alpha": 0.25,
+        "axes.prop_cycle": matplotlib.cycler(color=[c for k, c in OKABE_ITO.items() if k != "yellow"]),
+        "legend.framealpha": 0.85, "savefig.bbox": "tight",
+    })
+
+
+def legend_below(fig, handles, ncol=None):
+    """One legend for all panels, centred below the figure (kept in the PNG by the tight bounding box)."""
+    return fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0), frameon=False,
+                      ncol=ncol or len(handles))
+
+
+def integer_ticks(axis):
+    """Tick a count axis (ax.xaxis / ax.yaxis) at integers only."""
+    axis.set_major_locator(MaxNLocator(integer=True))
+
+
+def data_limits(*arrays, pad=0.05):
+    """(lo, hi) spanning the finite values of all arrays, padded by `pad` of the span on each side."""
+    values = np.concatenate([np.ravel(np.asarray(a, dtype=float)) for a in arrays])
+    values = values[np.isfinite(values)]
+    if values.size == 0:
+        return -1.0, 1.0
+    lo, hi = float(values.min()), float(values.max())
+    margin = pad * (hi - lo) if hi > lo else max(abs(lo), 1.0) * pad
+    return lo - margin, hi + margin
+
+
+def unwrap_deg(values, groups, reference=None):
+    """Angles [deg] unwrapped within each group (e.g. a contact period), so they do not jump at ±180°.
+
+    `groups` gives each sample's group (< 0: none, left as is). Each group is unwrapped from its first
+    finite sample over its finite samples, then shifted by a multiple of 360° so that its median lies in
+    (−180°, 180°] — or, given `reference` (angles of the same samples, already unwrapped), is nearest to the
+    median of `reference` over the group, so that two modes of one quantity are drawn on the same branch."""
+    values = np.asarray(values, dtype=float)
+    groups = np.asarray(groups)
+    out = values.copy()
+    for g in np.unique(groups[groups >= 0]):
+        idx = np.flatnonzero((groups == g) & np.isfinite(values))
+        if idx.size == 0:
+            continue
+        run = np.degrees(np.unwrap(np.radians(values[idx])))
+        target = 0.0
+        if reference is not None:
+            ref = np.asarray(reference, dtype=float)[idx]
+            if np.isfinite(ref).any():
+                target = float(np.nanmedian(ref))
+        out[idx] = run - 360.0 * np.round((np.median(run) - target) / 360.0)
+    return out
+
+
+def contact_runs(mask):
+    """Group index per sample: 0, 1, ... for each run of True in `mask`, -1 elsewhere."""
+    mask = np.asarray(mask, dtype=bool)
+    starts = mask & ~np.r_[False, mask[:-1]]
+    return np.where(mask, np.cumsum(starts) - 1, -1)
+
+
+def add_output_arguments(parser):
+    """The --dpi option every script takes."""
+    parser.add_argument("--dpi", type=int, default=DEFAULT_DPI, help=f"PNG resolution (default {DEFAULT_DPI})")
+    return parser
+
+
+def parser(doc):
+    return add_output_arguments(argparse.ArgumentParser(description=doc.strip().splitlines()[0],
+                                                        formatter_class=argparse.RawDescriptionHelpFormatter))
+
+
+def one_png_main(doc, load, build, argv=None):
+    """main() of a script drawing one PNG from array.h5: `SCRIPT ARRAY_H5 OUT.png [--dpi DPI]`, where
+    build(load(ARRAY_H5)) returns (figure, axes)."""
+    p = parser(doc)
+    p.add_argument("array_h5")
+    p.add_argument("out")
+    args = p.parse_args(argv)
+    apply()
+    fig, _ = build(load(args.array_h5))
+    save(fig, args.out, dpi=args.dpi)
+    print("wrote", args.out)
+
+
+def save(fig, path, dpi=DEFAULT_DPI):
+    """Lays the figure out, writes it atomically (atomic_save) and closes it."""
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    save_figure(fig, path, dpi=dpi)
+    plt.close(fig)

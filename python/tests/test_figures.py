@@ -1,0 +1,248 @@
+"""What the figure scripts in figures/ draw: the fit lines are summary.json's, angles are unwrapped, counts have
+integer ticks, the palette is Okabe–Ito, units are written properly, axis ranges follow the data, time windows
+and whisks select the time series, and the array animation has top and side views with greyscale-distinct
+states at the requested fps and frame count."""
+
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import vibrissa
+
+pytest.importorskip("matplotlib")
+pytest.importorskip("h5py")
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+FIGURES = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "figures")
+sys.path.insert(0, FIGURES)
+import array_animation  # noqa: E402
+import array_pitch_sweep  # noqa: E402
+import style  # noqa: E402
+import trial_figures  # noqa: E402
+from matplotlib import pyplot as plt  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def trial_files(tmp_path_factory):
+    """frames.h5 and summary.json of a short synthetic trial with all three modes."""
+    out = tmp_path_factory.mktemp("trial")
+    trial = vibrissa.synthesize_trial(duration=1.0, mu=0.48, theta_center_deg=12.0, seed=3)
+    vibrissa.analyze_trial(trial, mu=0.48).write(out)
+    return out
+
+
+@pytest.fixture(scope="module")
+def trial_data(trial_files):
+    summary = json.loads((trial_files / "summary.json").read_text())
+    return trial_figures.load(trial_files / "frames.h5"), summary
+
+
+@pytest.fixture(scope="module")
+def figs(trial_data):
+    style.apply()
+    built = trial_figures.build(*trial_data)
+    yield built
+    for fig in built.values():
+        plt.close(fig)
+
+
+def lines_with_gid(ax, gid):
+    return [ln for ln in ax.get_lines() if ln.get_gid() == gid]
+
+
+def test_palette_is_okabe_ito():
+    assert list(style.OKABE_ITO.values()) == ["#000000", "#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2",
+                                              "#D55E00", "#CC79A7"]
+    used = [m["color"] for m in style.MODES] + [s["color"] for s in style.STATES.values()]
+    used += [style.FIT["color"], style.DATA["color"], style.IDENTITY["color"], style.OBJECT["color"]]
+    assert set(used) <= set(style.OKABE_ITO.values()) | {style.GREY}
+    assert len({(m["color"], str(m["ls"])) for m in style.MODES}) == len({str(m["ls"]) for m in style.MODES}) == 3
+
+
+@pytest.mark.parametrize("name, eq", [("fig2e_z_error_eq6.png", "eq6"), ("fig4b_z_error_eq7.png", "eq7")])
+def test_z_error_fit_lines_are_the_summary_fits(figs, trial_data, name, eq):
+    _, summary = trial_data
+    ax = figs[name].axes[0]
+    fits = lines_with_gid(ax, "fit")
+    expected = [summary["z_error"][eq]["all"]]
+    if summary["z_error"][eq]["outliers"]:  # else the same fit, drawn once
+        expected.append(summary["z_error"][eq]["without_iqr_outliers"])
+    assert len(fits) == len(expected)
+    for line, fit in zip(fits, expected):
+        x, y = line.get_data()
+        np.testing.assert_allclose(y, fit["slope"] * x + fit["intercept"] * 1e3, rtol=1e-12, atol=1e-12)
+        assert f"{fit['slope']:.3f}x" in line.get_label() and f"{fit['r2']:.3f}" in line.get_label()
+    # the points marked as used are exactly the points of the summary's fit
+    used = [c for c in ax.collections if c.get_gid() == "used"]
+    assert len(used[0].get_offsets()) == expected[0]["points"]
+
+
+def test_fit_line_follows_the_summary_not_the_data(trial_data):
+    d, summary = trial_data
+    fake = json.loads(json.dumps(summary))
+    fake["z_error"]["eq6"]["all"].update(slope=-2.5, intercept=0.001)
+    fake["kinematic_prediction"]["fit"].update(slope=7.0, intercept=-0.002)
+    built = trial_figures.build(d, fake)
+    x, y = lines_with_gid(built["fig2e_z_error_eq6.png"].axes[0], "fit")[0].get_data()
+    np.testing.assert_allclose(y, -2.5 * x + 1.0)
+    ax = built["fig2f_kinematic_prediction.png"].axes[0]
+    x, y = lines_with_gid(ax, "fit")[0].get_data()
+    np.testing.assert_allclose(y, 7.0 * x - 2.0)
+    # Fig. 2f's ranges are the data's, whatever the fit line does
+    assert ax.get_ylim() == pytest.approx(style.data_limits(d["kinematic_height"] * 1e3))
+    assert ax.get_xlim() == pytest.approx(style.data_limits(d["tracked_height"] * 1e3))
+    for fig in built.values():
+        plt.close(fig)
+
+
+def test_unwrap_deg_removes_jumps_and_follows_a_reference():
+    v = np.array([170.0, 179.0, -179.0, -170.0, np.nan, 10.0, -175.0, 175.0])
+    g = np.array([0, 0, 0, 0, -1, -1, 1, 1])
+    out = style.unwrap_deg(v, g)
+    np.testing.assert_allclose(out[:4], [170.0, 179.0, 181.0, 190.0])
+    assert np.isnan(out[4]) and out[5] == 10.0  # outside any group: unchanged
+    np.testing.assert_allclose(out[6:], [-175.0, -185.0])  # median -180 -> kept on the (-180, 180] side
+    ref = np.full_like(v, 540.0)
+    np.testing.assert_allclose(style.unwrap_deg(v, g, reference=ref)[:4], [530.0, 539.0, 541.0, 550.0])
+
+
+def test_direction_traces_have_no_wrap_jumps(figs, trial_data):
+    d, _ = trial_data
+    fig = figs["fig3b_whisker_signals.png"]
+    raw_jumps = max(np.nanmax(np.abs(np.diff(d[m["prefix"] + q]))) for m in trial_figures.present_modes(d)
+                    for q in trial_figures.ANGLES)
+    assert raw_jumps > 180.0, "the test trial should wrap F_D or M_D somewhere; choose another seed"
+    t = d["time"] * 1e3
+    starts = {t[i] for i in np.flatnonzero(np.diff(d["period"]) != 0) + 1}
+    for ax in (fig.axes[2], fig.axes[5]):  # F_D, M_D
+        assert ax.get_ylabel().endswith("[deg]")
+        for line in ax.get_lines():
+            x, y = line.get_data()
+            steps = np.abs(np.diff(y))
+            within = np.isfinite(steps) & ~np.isin(x[1:], list(starts))
+            assert steps[within].max() < 90.0
+
+
+def test_count_axes_have_integer_ticks(figs):
+    hist = figs["fig3cde_friction.png"].axes[2]
+    assert hist.get_ylabel() == "frames"
+    ticks = hist.get_yticks()
+    assert np.all(ticks == np.round(ticks))
+    state = np.zeros((3, 4, 6), dtype=int)
+    state[0, 0, 2:4] = 1
+    state[1, :2, 1:3] = 1
+    state[2, :3, 2] = 1
+    state[2, 3, 4] = 2
+    d = dict(names=["A1", "B1", "C1", "D1"], state=state, MB=np.full(state.shape, 2e-6), pitch=np.radians([-5, 0, 5]))
+    fig, (_, counts, _) = array_pitch_sweep.build(d)
+    fig.canvas.draw()
+    ticks = [t for t in counts.get_yticks() if counts.get_ylim()[0] <= t <= counts.get_ylim()[1]]
+    assert len(ticks) >= 2 and all(t == round(t) for t in ticks)
+    plt.close(fig)
+
+
+def test_units_are_written_properly(figs):
+    labels = [ax.get_ylabel() + ax.get_xlabel() for fig in figs.values() for ax in fig.axes]
+    assert not any("uN" in s or "N m" in s for s in labels)
+    assert sum("[µN·m]" in s for s in labels) >= 4 and sum("[mN]" in s for s in labels) >= 4
+
+
+def test_every_figure_has_a_title_and_labelled_axes(figs):
+    for name, fig in figs.items():
+        assert fig._suptitle is not None or any(ax.get_title() for ax in fig.axes), name
+        for ax in fig.axes:
+            assert ax.get_ylabel(), name
+
+
+def test_time_window_and_whisk_choose_the_time_series(trial_data):
+    d, summary = trial_data
+    assert trial_figures.select_window(d)[:2] == (d["time"][0], d["time"][-1])  # a short trial: whole
+    fig = trial_figures.build(d, summary, window=(0.2, 0.45))["fig3b_whisker_signals.png"]
+    assert fig.axes[-1].get_xlim() == pytest.approx((200.0, 450.0))
+    assert "t = 0.2–0.45 s" in fig._suptitle.get_text()
+    x = fig.axes[1].get_lines()[0].get_xdata()
+    assert x.min() >= 200.0 and x.max() <= 450.0
+    start, end, what = trial_figures.select_window(d, whisk=2)
+    in_whisk = d["time"][d["period"] == 1]
+    assert start < in_whisk[0] and end > in_whisk[-1] and end - start < 2 * (in_whisk[-1] - in_whisk[0]) + 0.02
+    assert what.startswith("whisk 2 of")
+    long = dict(time=np.arange(0, 30, 1e-3), period=np.full(30000, -1))
+    long["period"][2500:2560] = 0
+    start, end, _ = trial_figures.select_window(long)
+    assert end - start == pytest.approx(trial_figures.WINDOW_S) and start == pytest.approx(2.45)
+    with pytest.raises(SystemExit, match="contact periods"):
+        trial_figures.select_window(d, whisk=999)
+    plt.close("all")
+
+
+def test_python_figures_pass_the_window_to_the_script(tmp_path):
+    result = vibrissa.analyze_trial(vibrissa.synthesize_trial(duration=0.3, seed=3))
+    with pytest.raises(RuntimeError, match="lies outside the trial"):
+        result.figures(tmp_path / "f", window=(100.0, 101.0))
+
+
+def test_cli_trial_window_flags(cli, tmp_path):
+    trial = tmp_path / "t.csv"
+    subprocess.run([cli, "synth", trial, "--duration", "0.6"], check=True, capture_output=True)
+    done = subprocess.run([cli, "trial", trial, "--window", "0.3,0.1"], capture_output=True, text=True)
+    assert done.returncode != 0 and "start must be before end" in done.stderr
+    done = subprocess.run([cli, "trial", trial, "--window", "0.1,0.3", "--whisk", "1"], capture_output=True, text=True)
+    assert done.returncode != 0 and "excludes" in done.stderr
+    done = subprocess.run([cli, "trial", trial, "--whisk", "1", "--figure-dpi", "60", "--out", tmp_path / "r"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0 and "failed" not in done.stderr, done.stderr
+    png = tmp_path / "r" / "figures" / "fig3b_whisker_signals.png"
+    width = int.from_bytes(png.read_bytes()[16:20], "big")
+    assert width < 7.5 * 60  # drawn at the requested dpi (7 in wide)
+
+
+def luminance(hex_colour):
+    r, g, b = matplotlib.colors.to_rgb(hex_colour)
+    return 0.299 * r + 0.587 * g + 0.114 * b
+
+
+def test_array_states_differ_in_greyscale_and_line_style():
+    grey = sorted(luminance(s["color"]) for s in style.STATES.values())
+    assert min(np.diff(grey)) >= 0.1
+    assert len({(str(s["ls"]), s["lw"]) for s in style.STATES.values()}) == 3
+
+
+def test_array_animation_views_fps_and_frames(cli, tmp_path):
+    config = vibrissa.default_array_config()
+    config["time"]["frames"] = 60
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(config))
+    out = tmp_path / "arr"
+    done = subprocess.run([cli, "array", path, "--out", out, "--frames", "9", "--fps", "5", "--figure-dpi", "60"],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0 and "failed" not in done.stderr, done.stderr
+    probe = subprocess.run(["ffprobe", "-v", "error", "-select_streams", "v:0", "-count_frames", "-show_entries",
+                            "stream=r_frame_rate,nb_read_frames", "-of", "json", out / "array_animation.mp4"],
+                           capture_output=True, text=True)
+    if probe.returncode != 0:
+        pytest.skip("ffprobe is not available")
+    stream = json.loads(probe.stdout)["streams"][0]
+    assert stream["r_frame_rate"] == "5/1" and int(stream["nb_read_frames"]) == 9
+
+    style.apply()
+    anim = array_animation.ArrayAnimation(array_animation.load(out / "array.h5"))
+    top, side = anim.axes
+    assert "top" in top.get_title() and "side" in side.get_title()
+    assert top.get_xlabel().startswith("y") and top.get_ylabel().startswith("x") and side.get_ylabel().startswith("z")
+    i = anim.busiest_frame()
+    anim.draw(i)
+    states = anim.states[:, i]
+    assert (states == 1).any()
+    for view in anim.lines:
+        for w, line in enumerate(view):
+            s = style.STATES[int(states[w])]
+            assert line.get_linewidth() == s["lw"] and matplotlib.colors.to_hex(line.get_color()) == s["color"].lower()
+    assert len(anim.markers[0].get_xdata()) == int((states == 1).sum())
+    labels = [t.get_text() for t in anim.fig.legends[0].get_texts()]
+    assert labels == ["free", "in contact", "pushed past", "object"]
+    plt.close(anim.fig)
