@@ -58,12 +58,23 @@ def batch_args(links=200):
     return w, points
 
 
+def undisturbed(measure, nominal_seconds, attempts=10):
+    """`measure()` -> (seconds, count), repeated until the call took less than 1.5x its nominal time: on a
+    loaded machine the OS may hold back the calling thread between taking its start time and entering the
+    call, and then the middle half of [start, end] is not the middle half of the call."""
+    for _ in range(attempts):
+        seconds, inside = measure()
+        if seconds < 1.5 * nominal_seconds:
+            break
+    return seconds, inside
+
+
 def test_the_method_detects_a_call_that_holds_the_gil():
     libc_holding = ctypes.PyDLL(None)   # PyDLL: the GIL stays held during foreign calls
     libc_releasing = ctypes.CDLL(None)  # CDLL: released
     w, points = batch_args()
     for short in (pure_python, lambda: vibrissa.solve_point_batch(w, points[:5], warm_start=False, threads=1)):
-        seconds, inside = repetitions_inside(lambda: libc_holding.usleep(200_000), short)
+        seconds, inside = undisturbed(lambda: repetitions_inside(lambda: libc_holding.usleep(200_000), short), 0.2)
         assert seconds >= MIN_CALL_SECONDS and inside == 0
         seconds, inside = repetitions_inside(lambda: libc_releasing.usleep(200_000), short)
         assert seconds >= MIN_CALL_SECONDS and inside > 0
