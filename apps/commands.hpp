@@ -9,5 +9,7 @@ void register_demo(CLI::App& app);
 void register_trial(CLI::App& app);
 void register_synth(CLI::App& app);
 void register_array(CLI::App& app);
+void register_reconstruct(CLI::App& app);
+void register_calibrate(CLI::App& app);
 
 }  // namespace vibrissa::cli

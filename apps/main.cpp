@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   vibrissa::cli::register_trial(app);
   vibrissa::cli::register_synth(app);
   vibrissa::cli::register_array(app);
+  vibrissa::cli::register_reconstruct(app);
+  vibrissa::cli::register_calibrate(app);
   try {
     // A killed run (Ctrl-C, kill, a closed terminal) removes its half-written temporaries and keeps the
     // older outputs (docs/formats.md, "Atomic outputs").

@@ -95,6 +95,17 @@ trial::Trial assemble_trial(const ArrayReader& r) {
         t.shape_W[i].push_back(q * Ls);
       }
   }
+  if (auto a = r.array("reconstructed")) {
+    const auto flags = as_vector(*a, src, "reconstructed");
+    for (std::size_t i = 0; i < flags.size(); ++i) {
+      if (!(flags[i] == 0.0 || flags[i] == 1.0))
+        throw std::invalid_argument(
+            located_message(src, i + 1, "reconstructed", "flag must be 0 or 1, got " + std::to_string(flags[i])));
+      t.reconstructed.push_back(static_cast<std::uint8_t>(flags[i]));
+    }
+  }
+  if (auto a = r.array("reprojection_px")) t.reprojection_px = as_vector(*a, src, "reprojection_px");
+  if (auto a = r.array("likelihood")) t.likelihood = as_vector(*a, src, "likelihood");
   t.meta.rest_shape = as_points(required("rest_shape"), src, "rest_shape", Ls);
   const auto edges = required("edges");
   if (edges.dims.size() != 2 || edges.dims[1] != 6)
@@ -143,6 +154,10 @@ TrialArrays disassemble_trial(const trial::Trial& t) {
         for (int c = 0; c < 3; ++c) a.data[(i * K + k) * 3 + static_cast<std::size_t>(c)] = t.shape_W[i][k][c];
     out.arrays.emplace_back("shape", std::move(a));
   }
+  if (!t.reconstructed.empty())
+    out.arrays.emplace_back("reconstructed", vec(std::vector<double>(t.reconstructed.begin(), t.reconstructed.end())));
+  if (!t.reprojection_px.empty()) out.arrays.emplace_back("reprojection_px", vec(t.reprojection_px));
+  if (!t.likelihood.empty()) out.arrays.emplace_back("likelihood", vec(t.likelihood));
   out.arrays.emplace_back("rest_shape", pts(t.meta.rest_shape));
   NamedArray e{{t.meta.edges.size(), 6}, {}};
   for (const auto& edge : t.meta.edges)

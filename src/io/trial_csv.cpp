@@ -175,7 +175,8 @@ trial::Trial read_trial_csv(const std::string& path) {
     (void)c;
     const bool known = name == "time" || name == "theta" || name == "phi" || name == "zeta" ||
                        name == "contact" || name.rfind("base_", 0) == 0 || name.rfind("contact_", 0) == 0 ||
-                       name.rfind("shape_", 0) == 0;
+                       name.rfind("shape_", 0) == 0 || name == "reconstructed" || name == "reprojection_px" ||
+                       name == "likelihood";
     if (!known) throw std::invalid_argument(located_message(path, header_line, name, "unknown column"));
   }
 
@@ -201,6 +202,15 @@ trial::Trial read_trial_csv(const std::string& path) {
       throw std::invalid_argument(located_message(path, line_no, "contact",
                                                   "contact flag must be 0 or 1, got '" + cells[c_contact] + "'"));
     t.contact.push_back(static_cast<std::uint8_t>(flag));
+    if (col.count("reconstructed")) {
+      const double r = get(col["reconstructed"]);
+      if (!(r == 0.0 || r == 1.0))
+        throw std::invalid_argument(located_message(path, line_no, "reconstructed",
+                                                    "flag must be 0 or 1, got '" + cells[col["reconstructed"]] + "'"));
+      t.reconstructed.push_back(static_cast<std::uint8_t>(r));
+    }
+    if (col.count("reprojection_px")) t.reprojection_px.push_back(get(col["reprojection_px"]));
+    if (col.count("likelihood")) t.likelihood.push_back(get(col["likelihood"]));
     if (n_contact_cols == 3)
       t.contact_W.emplace_back(Eigen::Vector3d(get(col["contact_x"]), get(col["contact_y"]), get(col["contact_z"])) * Ls);
     if (shape_nodes > 0) {
@@ -238,6 +248,9 @@ void write_trial_csv(const trial::Trial& t, const std::string& path) {
     if (t.has_zeta()) out << ",zeta";
     out << ",contact";
     if (t.has_contact_point()) out << ",contact_x,contact_y,contact_z";
+    if (!t.reconstructed.empty()) out << ",reconstructed";
+    if (!t.reprojection_px.empty()) out << ",reprojection_px";
+    if (!t.likelihood.empty()) out << ",likelihood";
     for (std::size_t k = 0; k < K; ++k) out << ",shape_x_" << k << ",shape_y_" << k << ",shape_z_" << k;
     out << "\n";
     auto cell = [&](double v) {
@@ -254,6 +267,9 @@ void write_trial_csv(const trial::Trial& t, const std::string& path) {
       out << ',' << int(t.contact[i]);
       if (t.has_contact_point())
         for (int a = 0; a < 3; ++a) cell(t.contact_W[i][a]);
+      if (!t.reconstructed.empty()) out << ',' << int(t.reconstructed[i]);
+      if (!t.reprojection_px.empty()) cell(t.reprojection_px[i]);
+      if (!t.likelihood.empty()) cell(t.likelihood[i]);
       for (std::size_t k = 0; k < K; ++k)
         for (int a = 0; a < 3; ++a) cell(t.has_shapes() && k < t.shape_W[i].size() ? t.shape_W[i][k][a] : nan_v);
       out << "\n";

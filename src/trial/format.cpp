@@ -56,6 +56,30 @@ std::vector<ContactPeriod> contact_periods(const std::vector<std::uint8_t>& cont
   return periods;
 }
 
+Trial reconstructed_frames_only(const Trial& t) {
+  if (t.reconstructed.empty()) return t;
+  Trial out;
+  out.source = t.source;
+  out.meta = t.meta;
+  auto keep = [&](const auto& column, auto& into, std::size_t i) {
+    if (!column.empty()) into.push_back(column[i]);
+  };
+  for (std::size_t i = 0; i < t.frames(); ++i) {
+    if (!t.is_reconstructed(i)) continue;
+    keep(t.time, out.time, i);
+    keep(t.base_W, out.base_W, i);
+    keep(t.theta, out.theta, i);
+    keep(t.phi, out.phi, i);
+    keep(t.zeta, out.zeta, i);
+    keep(t.contact, out.contact, i);
+    keep(t.contact_W, out.contact_W, i);
+    keep(t.shape_W, out.shape_W, i);
+    keep(t.reprojection_px, out.reprojection_px, i);
+    keep(t.likelihood, out.likelihood, i);
+  }
+  return out;
+}
+
 WhiskerProperties whisker_properties(const TrialMaterial& m) {
   WhiskerProperties p;
   p.links = m.links;
@@ -83,6 +107,9 @@ void validate(const Trial& t, const std::vector<std::size_t>* file_rows) {
   same_size(t.contact.size(), "contact", false);
   same_size(t.contact_W.size(), "contact_point", true);
   same_size(t.shape_W.size(), "shape", true);
+  same_size(t.reconstructed.size(), "reconstructed", true);
+  same_size(t.reprojection_px.size(), "reprojection_px", true);
+  same_size(t.likelihood.size(), "likelihood", true);
   auto finite = [&](double v, std::size_t i, const char* column) {
     if (!std::isfinite(v)) fail(src, row(i), column, "value " + fmt(v) + " is not finite");
   };
@@ -93,6 +120,12 @@ void validate(const Trial& t, const std::vector<std::size_t>* file_rows) {
     if (i > 0 && !(t.time[i] > t.time[i - 1]))
       fail(src, row(i), "time",
            "time must increase strictly, got " + fmt(t.time[i]) + " s after " + fmt(t.time[i - 1]) + " s");
+    if (!t.reconstructed.empty() && t.reconstructed[i] > 1)
+      fail(src, row(i), "reconstructed", "flag must be 0 or 1, got " + std::to_string(t.reconstructed[i]));
+    if (!t.is_reconstructed(i)) {  // values are NaN by design; such frames never count as contact
+      if (t.contact[i] != 0) fail(src, row(i), "contact", "a frame that is not reconstructed cannot be in contact");
+      continue;
+    }
     for (int a = 0; a < 3; ++a) finite(t.base_W[i][a], i, axes[a]);
     finite(t.theta[i], i, "theta");
     finite(t.phi[i], i, "phi");

@@ -42,7 +42,8 @@ TrialRunOptions run_options(const TrialFlags& flags) {
 TrialRun run_trial(const Trial& trial, const TrialRunOptions& options, const RunControl& control) {
   const auto t0 = std::chrono::steady_clock::now();
   TrialRun run;
-  run.result = run_pipeline(trial, options.pipeline, control);
+  // Frames that could not be reconstructed (docs/reconstruction.md) are skipped, never filled in.
+  run.result = run_pipeline(reconstructed_frames_only(trial), options.pipeline, control);
   run.analysis = analyse_trial(run.result, options.analysis);
   run.pipeline_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return run;

@@ -57,12 +57,19 @@ struct Trial {
   std::vector<Eigen::Vector3d> contact_W;
   /// Tracked deflected shape per frame, world [m], base first; empty vector where not tracked.
   std::vector<std::vector<Eigen::Vector3d>> shape_W;
+  /// Reconstruction quality (vibrissa reconstruct, docs/reconstruction.md); each empty when absent.
+  /// reconstructed[i] == 0: frame i could not be reconstructed; its base, angles and contact point are NaN,
+  /// contact is 0, and the analysis skips it (reconstructed_frames_only).
+  std::vector<std::uint8_t> reconstructed;
+  std::vector<double> reprojection_px;  ///< RMS reprojection error of the points used [px]
+  std::vector<double> likelihood;       ///< mean tracker likelihood of the points used
   TrialMetadata meta;
 
   [[nodiscard]] std::size_t frames() const { return time.size(); }
   [[nodiscard]] bool has_zeta() const { return !zeta.empty(); }
   [[nodiscard]] bool has_contact_point() const { return !contact_W.empty(); }
   [[nodiscard]] bool has_shapes() const { return !shape_W.empty(); }
+  [[nodiscard]] bool is_reconstructed(std::size_t i) const { return reconstructed.empty() || reconstructed[i] != 0; }
 };
 
 /// A maximal run of contact frames [first, last] (inclusive).
@@ -71,6 +78,9 @@ struct ContactPeriod {
   [[nodiscard]] std::size_t size() const { return last - first + 1; }
 };
 std::vector<ContactPeriod> contact_periods(const std::vector<std::uint8_t>& contact);
+
+/// The trial without its frames flagged reconstructed == 0 (the trial itself when none is flagged).
+Trial reconstructed_frames_only(const Trial& trial);
 
 /// Throws std::invalid_argument naming file, row (1-based data row) and column for the first problem:
 /// size mismatch, non-finite values in required columns, non-increasing time, contact frames without a

@@ -1,0 +1,169 @@
+// `vibrissa reconstruct --top T --front F --calibration C.json -o trial.h5` and `vibrissa calibrate`: from
+// two tracked views to a trial that `vibrissa trial` reads (docs/reconstruction.md).
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "progress.hpp"
+#include "vibrissa/io/json_file.hpp"
+#include "vibrissa/io/trial_io.hpp"
+#include "vibrissa/recon/geometry.hpp"
+#include "vibrissa/recon/reconstruct.hpp"
+
+namespace vibrissa::cli {
+
+namespace {
+
+struct ReconstructArgs {
+  std::string top, front, calibration, out, report;
+  std::string top_camera = "top", front_camera = "front";
+  recon::TrackSelection top_sel, front_sel;
+  std::string bodyparts;
+  std::vector<double> pegs_mm, edges_mm;
+  double contact_threshold_um = 300.0, base_jump_um = 1000.0;
+  recon::ReconstructOptions options;
+};
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+recon::Camera named_camera(const std::map<std::string, recon::Camera>& cams, const std::string& name,
+                           const std::string& path) {
+  auto it = cams.find(name);
+  if (it == cams.end()) throw std::invalid_argument(path + ": field 'cameras." + name + "': no camera of that name");
+  return it->second;
+}
+
+}  // namespace
+
+void register_reconstruct(CLI::App& app) {
+  auto* cmd = app.add_subcommand("reconstruct", "Reconstruct a trial from two tracked camera views (docs/reconstruction.md)");
+  auto a = std::make_shared<ReconstructArgs>();
+  auto& opt = a->options;
+  cmd->add_option("--top", a->top, "top-view tracks: .csv (plain or DeepLabCut), .h5 (DeepLabCut) or .whiskers")->required();
+  cmd->add_option("--front", a->front, "front-view tracks, same formats")->required();
+  cmd->add_option("--calibration", a->calibration, "calibration JSON (pinhole or DLT cameras)")->required();
+  cmd->add_option("-o,--out", a->out, "output trial file (.h5, .csv or .mat)")->required();
+  cmd->add_option("--top-camera", a->top_camera, "name of the top camera in the calibration")->capture_default_str();
+  cmd->add_option("--front-camera", a->front_camera, "name of the front camera")->capture_default_str();
+  cmd->add_option("--top-measurements", a->top_sel.measurements, "Janelia .measurements of the top .whiskers");
+  cmd->add_option("--front-measurements", a->front_sel.measurements, "Janelia .measurements of the front .whiskers");
+  cmd->add_option("--whisker-id", a->top_sel.identity, "Janelia whisker identity (measurements 'state')")->capture_default_str();
+  cmd->add_option("--bodyparts", a->bodyparts, "DeepLabCut keypoints base to tip, comma-separated (default: all)");
+  cmd->add_option("--individual", a->top_sel.individual, "DeepLabCut individual (multi-animal files)");
+  cmd->add_option("--peg-mm", a->pegs_mm, "vertical peg (along world z) through X Y Z [mm]; repeat for more")->expected(3)->allow_extra_args(false);
+  cmd->add_option("--edge-mm", a->edges_mm, "edge: point X Y Z [mm] and direction DX DY DZ; repeat for more")->expected(6)->allow_extra_args(false);
+  cmd->add_option("--frame-rate", opt.frame_rate, "frame rate [Hz]: time = frame / rate")->capture_default_str();
+  cmd->add_option("--min-likelihood", opt.min_likelihood, "ignore points below this likelihood")->capture_default_str();
+  cmd->add_option("--max-reprojection-px", opt.max_reprojection_px, "flag frames above this RMS reprojection error [px]")->capture_default_str();
+  cmd->add_option("--contact-threshold-um", a->contact_threshold_um, "closest approach to an edge counted as contact [um]")->capture_default_str();
+  cmd->add_option("--base-jump-um", a->base_jump_um, "flag frames whose base leaves the local median by more [um]")->capture_default_str();
+  cmd->add_option("--fit-degree", opt.fit_degree, "polynomial degree of the 3D curve")->capture_default_str();
+  cmd->add_option("--nodes", opt.nodes, "segments of the written 3D shape")->capture_default_str();
+  cmd->add_option("--report", a->report, "also write a JSON report (per-frame status, undeflected shapes)");
+  cmd->callback([a] {
+    auto& o = a->options;
+    for (std::size_t k = 0; k + 2 < a->pegs_mm.size(); k += 3)
+      o.edges.push_back({Eigen::Vector3d(a->pegs_mm[k], a->pegs_mm[k + 1], a->pegs_mm[k + 2]) * 1e-3, Eigen::Vector3d::UnitZ()});
+    for (std::size_t k = 0; k + 5 < a->edges_mm.size(); k += 6)
+      o.edges.push_back({Eigen::Vector3d(a->edges_mm[k], a->edges_mm[k + 1], a->edges_mm[k + 2]) * 1e-3,
+                         Eigen::Vector3d(a->edges_mm[k + 3], a->edges_mm[k + 4], a->edges_mm[k + 5])});
+    o.contact_threshold = a->contact_threshold_um * 1e-6;
+    o.base_jump = a->base_jump_um * 1e-6;
+    a->top_sel.bodyparts = split_list(a->bodyparts);
+    a->front_sel.bodyparts = a->top_sel.bodyparts;
+    a->front_sel.identity = a->top_sel.identity;
+    a->front_sel.individual = a->top_sel.individual;
+    const auto cams = recon::read_cameras_json(a->calibration);
+    const recon::Camera top_cam = named_camera(cams, a->top_camera, a->calibration);
+    const recon::Camera front_cam = named_camera(cams, a->front_camera, a->calibration);
+    const recon::Tracks2D top = recon::read_tracks(a->top, a->top_sel);
+    const recon::Tracks2D front = recon::read_tracks(a->front, a->front_sel);
+    std::size_t total = top.frames.size() + front.frames.size();
+    Progress progress("reconstructing frames", total);
+    std::size_t shown = 0;
+    RunControl control;
+    control.progress = [&](std::size_t done, std::size_t all) {
+      if (shown == 0) total = all;
+      progress.advance(done - shown);
+      shown = done;
+    };
+    const recon::Reconstruction rec = recon::reconstruct(top, top_cam, front, front_cam, o, control);
+    progress.finish();
+    const trial::Trial t = recon::to_trial(rec, o, {}, a->out);
+    io::write_trial(t, a->out);
+    std::size_t contact = 0;
+    for (auto c : t.contact) contact += c;
+    std::cout << "vibrissa reconstruct: " << rec.frames.size() << " frames, "
+              << rec.count(recon::FrameStatus::ok) << " reconstructed (" << contact << " in contact, "
+              << rec.undeflected.size() << " contact periods); flagged: "
+              << rec.count(recon::FrameStatus::missing_view) << " missing view, "
+              << rec.count(recon::FrameStatus::too_few_points) << " too few points, "
+              << rec.count(recon::FrameStatus::reprojection) << " reprojection, "
+              << rec.count(recon::FrameStatus::inconsistent_base) << " inconsistent base -> " << a->out << "\n";
+    if (!a->report.empty()) {
+      nlohmann::json j;
+      auto& frames = j["frames"];
+      frames = nlohmann::json::array();
+      for (const auto& f : rec.frames)
+        frames.push_back({{"frame", f.frame}, {"status", recon::frame_status_name(f.status)},
+                          {"points_used", f.points_used},
+                          {"reprojection_px", std::isfinite(f.reprojection_px) ? nlohmann::json(f.reprojection_px) : nlohmann::json()},
+                          {"approach_m", std::isfinite(f.approach) ? nlohmann::json(f.approach) : nlohmann::json()},
+                          {"contact_s_m", std::isfinite(f.contact_s) ? nlohmann::json(f.contact_s) : nlohmann::json()}});
+      auto& periods = j["contact_periods"];
+      periods = nlohmann::json::array();
+      for (const auto& u : rec.undeflected) {
+        nlohmann::json shape = nlohmann::json::array();
+        for (const auto& p : u.shape_W) shape.push_back({p.x(), p.y(), p.z()});
+        periods.push_back({{"first_frame", u.first_frame}, {"last_frame", u.last_frame},
+                           {"undeflected_from_frame", u.source_frame}, {"undeflected_shape_m", shape}});
+      }
+      io::write_json_file(a->report, j);
+    }
+  });
+}
+
+void register_calibrate(CLI::App& app) {
+  auto* cmd = app.add_subcommand("calibrate", "DLT calibration from >= 6 known 3D-2D correspondences per camera (docs/reconstruction.md)");
+  auto cameras = std::make_shared<std::vector<std::string>>();
+  auto out = std::make_shared<std::string>();
+  auto unit = std::make_shared<std::string>("mm");
+  cmd->add_option("--camera", *cameras, "NAME=points.csv (columns x,y,z,u_px,v_px); repeat per camera")->required();
+  cmd->add_option("--length-unit", *unit, "unit of x, y, z: m, mm or um")->capture_default_str();
+  cmd->add_option("-o,--out", *out, "calibration JSON to write")->required();
+  cmd->callback([cameras, out, unit] {
+    std::map<std::string, recon::Camera> cams;
+    std::map<std::string, double> rms;
+    for (const std::string& spec : *cameras) {
+      const auto eq = spec.find('=');
+      if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--camera expects NAME=FILE, got '" + spec + "'");
+      const std::string name = spec.substr(0, eq), path = spec.substr(eq + 1);
+      const recon::Correspondences c = recon::read_correspondences_csv(path, *unit);
+      recon::Calibration cal;
+      try {
+        cal = recon::calibrate_dlt(c.points_W, c.pixels);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(path + ": " + e.what());
+      }
+      double worst = 0.0;
+      for (double r : cal.residuals_px) worst = std::max(worst, r);
+      std::cout << "camera " << name << ": " << c.pixels.size() << " points, RMS reprojection error "
+                << cal.rms_px << " px (max " << worst << " px)\n";
+      cams[name] = cal.camera;
+      rms[name] = cal.rms_px;
+    }
+    recon::write_cameras_json(*out, cams, rms);
+  });
+}
+
+}  // namespace vibrissa::cli

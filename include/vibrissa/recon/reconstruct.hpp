@@ -1,0 +1,89 @@
+#pragma once
+// From two tracked views to 3D whiskers and a trial (docs/reconstruction.md). Per frame: drop points below
+// the likelihood threshold, match the top-view points to the front-view polyline by the epipolar constraint
+// (the intersection nearest the same relative arc length, kept monotonic along the whisker), triangulate,
+// reject reprojection outliers, fit a smooth 3D curve (polynomial in chord length, Tukey-weighted IRLS, weights
+// = likelihoods), resample it, and read base point, theta/phi/zeta (core/rest_curve.hpp whisker_frame,
+// core/pose.hpp) and the closest approach to the object's edges. Frames that fail are flagged with a status
+// and carry NaN, never invented values.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vibrissa/core/run_control.hpp"
+#include "vibrissa/recon/camera.hpp"
+#include "vibrissa/recon/tracks.hpp"
+#include "vibrissa/solve/options.hpp"
+#include "vibrissa/trial/format.hpp"
+
+namespace vibrissa::recon {
+
+struct ReconstructOptions {
+  double min_likelihood = 0.5;        ///< points below are ignored
+  int min_points = 6;                 ///< matched points needed per frame
+  double max_reprojection_px = 2.0;   ///< frame flagged when the RMS reprojection error exceeds this [px]
+  double outlier_px = 4.0;            ///< points whose reprojection error exceeds max(this, 3 median) are dropped
+  int fit_degree = 5;                 ///< polynomial degree of the 3D curve
+  int nodes = 40;                     ///< points of the reconstructed shape (nodes + 1 written)
+  double contact_threshold = 0.3e-3;  ///< closest approach to an edge counted as contact [m]
+  double base_jump = 1.0e-3;          ///< base farther than this from the local median base is flagged [m]
+  int base_window = 25;               ///< frames on each side for that median
+  double frame_rate = 1000.0;         ///< [Hz]: time = frame / frame_rate
+  std::vector<Edge> edges;            ///< the object (a peg is one edge); empty: no contact detection
+  void validate() const;              ///< throws std::invalid_argument naming the field
+};
+
+enum class FrameStatus : std::uint8_t {
+  ok,
+  missing_view,        ///< no track in one view
+  too_few_points,      ///< fewer than min_points above the likelihood threshold or matched
+  reprojection,        ///< RMS reprojection error above max_reprojection_px
+  inconsistent_base,   ///< base jumps away from its neighbours (tracker identity swap)
+};
+const char* frame_status_name(FrameStatus status);
+
+struct ReconstructedFrame {
+  std::int64_t frame = 0;
+  FrameStatus status = FrameStatus::missing_view;
+  std::size_t points_used = 0;
+  double reprojection_px;  ///< RMS over the points used [px]; NaN if none
+  double likelihood;       ///< mean likelihood of the points used; NaN if none
+  Eigen::Vector3d base_W;  ///< NaN unless ok
+  double theta, phi, zeta;  ///< [rad], NaN unless ok
+  std::vector<Eigen::Vector3d> shape_W;  ///< base first; empty unless ok
+  bool contact = false;
+  Eigen::Vector3d contact_W;  ///< point of the whisker nearest the edge (contact frames), else NaN
+  double contact_s = 0.0;     ///< its arc length from the base [m] (NaN outside contact)
+  double approach = 0.0;      ///< closest distance to the edges [m] (NaN without edges or when not ok)
+  ReconstructedFrame();
+  [[nodiscard]] bool ok() const { return status == FrameStatus::ok; }
+};
+
+/// The undeflected shape of one contact period: the shape of the last free (ok, no contact) frame before it,
+/// else of the first free frame after it.
+struct UndeflectedShape {
+  std::int64_t first_frame = 0, last_frame = 0;  ///< the contact period
+  std::int64_t source_frame = -1;                ///< the free frame the shape comes from (-1: none)
+  std::vector<Eigen::Vector3d> shape_W;
+};
+
+struct Reconstruction {
+  std::vector<ReconstructedFrame> frames;  ///< every frame tracked in either view, in order
+  std::vector<UndeflectedShape> undeflected;
+  [[nodiscard]] std::size_t count(FrameStatus status) const;
+};
+
+/// Reconstructs every frame present in either view; progress and cancellation per frame.
+Reconstruction reconstruct(const Tracks2D& top, const Camera& top_camera, const Tracks2D& front,
+                           const Camera& front_camera, const ReconstructOptions& options,
+                           const RunControl& control = {});
+
+/// The trial of a reconstruction (docs/trials.md): every frame, with the columns reconstructed,
+/// reprojection_px and likelihood; frames not reconstructed carry NaN and contact 0. Rest shape = the
+/// undeflected shape of the first contact period; edges from the options.
+trial::Trial to_trial(const Reconstruction& reconstruction, const ReconstructOptions& options,
+                      const trial::TrialMaterial& material = {}, const std::string& source = {});
+
+}  // namespace vibrissa::recon

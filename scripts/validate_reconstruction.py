@@ -1,0 +1,216 @@
+#!/usr/bin/python3
+"""Validation of `vibrissa reconstruct` against ground truth (docs/reconstruction.md, "Validation").
+
+A `vibrissa synth --shapes` trial (known 3D shapes, contact points and mu) is projected through two known
+pinhole cameras (with radial distortion). Per noise level: Gaussian pixel noise on every tracked point, 2 %
+of frames dropped in the front view, 5 % of points replaced by low-likelihood garbage, and 1 % of frames with
+a tracker identity swap in the front view (the neighbouring whisker, 2 mm higher). The top view is written as
+a plain CSV, the front view as a DeepLabCut CSV. `vibrissa reconstruct` rebuilds the trial, the errors are
+measured against the truth, and `vibrissa trial` recovers mu end to end.
+
+Usage: scripts/validate_reconstruction.py --vibrissa build/bin/vibrissa --out /tmp/recon_validation
+         [--noise 0 0.25 0.5 1 2] [--duration 1.5] [--figure docs/figures/reconstruction_validation.png]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import h5py
+
+CAMERAS = {  # K [px], R_CW, camera centre [m], k1, k2
+    "top": (np.array([[2400.0, 0, 320], [0, 2400, 240], [0, 0, 1]]), np.diag([1.0, -1.0, -1.0]),
+            np.array([0.015, 0.01, 0.3]), -0.05, 0.0),
+    "front": (np.array([[2400.0, 0, 320], [0, 2400, 240], [0, 0, 1]]),
+              np.array([[1.0, 0, 0], [0, 0, -1], [0, 1, 0]]), np.array([0.015, -0.3, 0.0]), 0.03, 0.0),
+}
+POINTS_PER_VIEW = 25
+MU_TRUE = 0.48
+
+
+def project(name, P_W):
+    K, R, C, k1, k2 = CAMERAS[name]
+    pc = (P_W - C) @ R.T
+    n = pc[:, :2] / pc[:, 2:3]
+    r2 = (n ** 2).sum(1, keepdims=True)
+    n = n * (1 + k1 * r2 + k2 * r2 ** 2)
+    return n @ K[:2, :2].T + K[:2, 2]
+
+
+def resample(shape, count):
+    seg = np.linalg.norm(np.diff(shape, axis=0), axis=1)
+    s = np.concatenate([[0], np.cumsum(seg)])
+    t = np.linspace(0, s[-1], count)
+    return np.stack([np.interp(t, s, shape[:, k]) for k in range(3)], axis=1)
+
+
+def run(cmd):
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit("command failed: " + " ".join(cmd) + "\n" + r.stdout + r.stderr)
+    return r.stdout
+
+
+def write_views(truth, sigma, rng, out_dir):
+    shapes = truth["shape"]
+    n = shapes.shape[0]
+    dropped = set(rng.choice(n, size=int(0.02 * n), replace=False).tolist())
+    swapped = set(rng.choice(sorted(set(range(n)) - dropped), size=int(0.01 * n), replace=False).tolist())
+    top_rows = ["frame,point,x_px,y_px,likelihood"]
+    K = POINTS_PER_VIEW
+    header = ["scorer" + ",synthetic" * (3 * K), "bodyparts" + "".join(f",p{k},p{k},p{k}" for k in range(K)),
+              "coords" + ",x,y,likelihood" * K]
+    front_rows = list(header)
+    for i in range(n):
+        shape = shapes[i][np.isfinite(shapes[i][:, 0])]
+        pts = resample(shape, K)
+        for view in ("top", "front"):
+            P = pts
+            if view == "front" and i in swapped:
+                P = pts + np.array([0.0, 0.0, 0.002])
+            px = project(view, P) + rng.normal(0.0, sigma, (K, 2))
+            like = rng.uniform(0.9, 1.0, K)
+            bad = rng.random(K) < 0.05
+            px[bad] += rng.normal(0.0, 30.0, (bad.sum(), 2))
+            like[bad] = rng.uniform(0.0, 0.3, bad.sum())
+            if view == "top":
+                top_rows += [f"{i},{k},{px[k,0]:.4f},{px[k,1]:.4f},{like[k]:.3f}" for k in range(K)]
+            elif i not in dropped:
+                front_rows.append(f"{i}," + ",".join(f"{px[k,0]:.4f},{px[k,1]:.4f},{like[k]:.3f}" for k in range(K)))
+    with open(os.path.join(out_dir, "top.csv"), "w") as f:
+        f.write("\n".join(top_rows) + "\n")
+    with open(os.path.join(out_dir, "front_dlc.csv"), "w") as f:
+        f.write("\n".join(front_rows) + "\n")
+    return dropped, swapped
+
+
+def calibration_json(path):
+    cams = {}
+    for name, (K, R, C, k1, k2) in CAMERAS.items():
+        cams[name] = {"model": "pinhole", "K": K.tolist(), "R": R.tolist(), "t": (-R @ C).tolist(), "k1": k1, "k2": k2}
+    with open(path, "w") as f:
+        json.dump({"length_unit": "m", "cameras": cams}, f, indent=1)
+
+
+def wrap_deg(a):
+    return (np.degrees(a) + 180.0) % 360.0 - 180.0
+
+
+def evaluate(truth, rec, dropped, swapped):
+    ok = rec["reconstructed"].astype(bool)
+    c_true = truth["contact"].astype(bool)
+    c_rec = rec["contact"].astype(bool)
+    base_um = np.linalg.norm(rec["base"][ok] - truth["base"][ok], axis=1) * 1e6
+    dth = np.abs(wrap_deg(rec["theta"][ok] - truth["theta"][ok]))
+    dph = np.abs(wrap_deg(rec["phi"][ok] - truth["phi"][ok]))
+    free = ok & ~c_true
+    dze = np.abs(wrap_deg(rec["zeta"][free] - truth["zeta"][free]))
+    both = ok & c_true & c_rec
+    cp_um = np.linalg.norm(rec["contact_point"][both] - truth["contact_point"][both], axis=1) * 1e6
+    swapped_idx = np.array(sorted(swapped), dtype=int)
+    return {
+        "frames": int(len(ok)), "reconstructed": int(ok.sum()),
+        "dropped_flagged": int(sum(not ok[i] for i in dropped)), "dropped": len(dropped),
+        "swaps_flagged": int((~ok[swapped_idx]).sum()) if len(swapped_idx) else 0, "swaps": len(swapped),
+        "base_um_median": float(np.median(base_um)), "base_um_p95": float(np.percentile(base_um, 95)),
+        "theta_deg_median": float(np.median(dth)), "theta_deg_p95": float(np.percentile(dth, 95)),
+        "phi_deg_median": float(np.median(dph)), "phi_deg_p95": float(np.percentile(dph, 95)),
+        "zeta_free_deg_median": float(np.median(dze)), "zeta_free_deg_p95": float(np.percentile(dze, 95)),
+        "contact_um_median": float(np.median(cp_um)) if len(cp_um) else float("nan"),
+        "contact_um_p95": float(np.percentile(cp_um, 95)) if len(cp_um) else float("nan"),
+        "contact_missed": int((ok & c_true & ~c_rec).sum()), "contact_extra": int((ok & ~c_true & c_rec).sum()),
+        "contact_true": int((ok & c_true).sum()),
+        "reprojection_px_median": float(np.nanmedian(rec["reprojection_px"][ok])),
+    }
+
+
+def load(path, names):
+    with h5py.File(path, "r") as f:
+        return {k: f[k][()] for k in names if k in f}
+
+
+def mu_of(vibrissa, trial, out):
+    run([vibrissa, "trial", trial, "--out", out, "--no-figures"])
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)["friction"]["median"]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--vibrissa", default="build/bin/vibrissa")
+    ap.add_argument("--out", default="/tmp/recon_validation")
+    ap.add_argument("--noise", type=float, nargs="+", default=[0.0, 0.25, 0.5, 1.0, 2.0])
+    ap.add_argument("--duration", type=float, default=1.5)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--figure", default="")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    syn = os.path.join(a.out, "synth.h5")
+    run([a.vibrissa, "synth", syn, "--duration", str(a.duration), "--shapes", "--mu", str(MU_TRUE)])
+    names = ["time", "base", "theta", "phi", "zeta", "contact", "contact_point", "shape", "edges",
+             "reconstructed", "reprojection_px"]
+    truth = load(syn, names)
+    peg_mm = truth["edges"][0][:3] * 1e3
+    cal = os.path.join(a.out, "calibration.json")
+    calibration_json(cal)
+    mu_truth_trial = mu_of(a.vibrissa, syn, os.path.join(a.out, "truth_results"))
+    rows = []
+    for sigma in a.noise:
+        d = os.path.join(a.out, f"noise_{sigma:g}px")
+        os.makedirs(d, exist_ok=True)
+        rng = np.random.default_rng(a.seed)
+        dropped, swapped = write_views(truth, sigma, rng, d)
+        rec_path = os.path.join(d, "reconstructed.h5")
+        run([a.vibrissa, "reconstruct", "--top", os.path.join(d, "top.csv"), "--front",
+             os.path.join(d, "front_dlc.csv"), "--calibration", cal, "--peg-mm", *[f"{v:.9g}" for v in peg_mm],
+             "-o", rec_path, "--report", os.path.join(d, "report.json")])
+        rec = load(rec_path, names)
+        row = evaluate(truth, rec, dropped, swapped)
+        row["noise_px"] = sigma
+        row["mu"] = mu_of(a.vibrissa, rec_path, os.path.join(d, "results"))
+        rows.append(row)
+        print(json.dumps(row), file=sys.stderr)
+    with open(os.path.join(a.out, "validation.json"), "w") as f:
+        json.dump({"mu_true": MU_TRUE, "mu_from_true_trial": mu_truth_trial, "rows": rows}, f, indent=1)
+    print(f"truth: mu = {MU_TRUE}; `vibrissa trial` on the synthetic trial itself: median mu = {mu_truth_trial:.4f}")
+    print("| noise [px] | reconstructed | dropped flagged | swaps flagged | base [µm] median / p95 | θ [°] median / p95 "
+          "| φ [°] median / p95 | ζ free [°] median / p95 | contact point [µm] median / p95 | contact missed / extra "
+          "| median μ |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['noise_px']:g} | {r['reconstructed']}/{r['frames']} | {r['dropped_flagged']}/{r['dropped']} "
+              f"| {r['swaps_flagged']}/{r['swaps']} | {r['base_um_median']:.1f} / {r['base_um_p95']:.1f} "
+              f"| {r['theta_deg_median']:.2f} / {r['theta_deg_p95']:.2f} | {r['phi_deg_median']:.2f} / {r['phi_deg_p95']:.2f} "
+              f"| {r['zeta_free_deg_median']:.2f} / {r['zeta_free_deg_p95']:.2f} "
+              f"| {r['contact_um_median']:.0f} / {r['contact_um_p95']:.0f} "
+              f"| {r['contact_missed']} / {r['contact_extra']} of {r['contact_true']} | {r['mu']:.3f} |")
+    if a.figure:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        noise = [r["noise_px"] for r in rows]
+        fig, ax = plt.subplots(1, 3, figsize=(12, 3.6))
+        ax[0].plot(noise, [r["base_um_median"] for r in rows], "o-", label="base, median")
+        ax[0].plot(noise, [r["base_um_p95"] for r in rows], "o--", label="base, 95th pct")
+        ax[0].plot(noise, [r["contact_um_median"] for r in rows], "s-", label="contact point, median")
+        ax[0].plot(noise, [r["contact_um_p95"] for r in rows], "s--", label="contact point, 95th pct")
+        ax[0].set(xlabel="pixel noise σ [px]", ylabel="error [µm]", title="positions")
+        ax[0].legend(fontsize=7)
+        for key, lab in (("theta", "θ"), ("phi", "φ"), ("zeta_free", "ζ (no contact)")):
+            ax[1].plot(noise, [r[key + "_deg_median"] for r in rows], "o-", label=lab + ", median")
+        ax[1].set(xlabel="pixel noise σ [px]", ylabel="error [°]", title="angles")
+        ax[1].legend(fontsize=7)
+        ax[2].plot(noise, [r["mu"] for r in rows], "o-", label="from reconstruction")
+        ax[2].axhline(MU_TRUE, color="k", ls=":", label=f"truth μ = {MU_TRUE}")
+        ax[2].axhline(mu_truth_trial, color="gray", ls="--", label="from the synthetic trial")
+        ax[2].set(xlabel="pixel noise σ [px]", ylabel="median μ", title="vibrissa trial, end to end")
+        ax[2].legend(fontsize=7)
+        fig.tight_layout()
+        os.makedirs(os.path.dirname(a.figure) or ".", exist_ok=True)
+        fig.savefig(a.figure, dpi=110)
+
+
+if __name__ == "__main__":
+    main()

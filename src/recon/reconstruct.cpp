@@ -1,0 +1,340 @@
+#include "vibrissa/recon/reconstruct.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "curve_fit.hpp"
+#include "vibrissa/core/pose.hpp"
+#include "vibrissa/core/rest_curve.hpp"
+#include "vibrissa/recon/geometry.hpp"
+
+namespace vibrissa::recon {
+
+namespace {
+constexpr double nan_v = std::numeric_limits<double>::quiet_NaN();
+const Eigen::Vector3d nan3 = Eigen::Vector3d::Constant(nan_v);
+
+double median_of(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+struct ViewPoints {
+  std::vector<Eigen::Vector2d> px, ideal;
+  std::vector<double> likelihood;
+  std::vector<double> arc;  ///< cumulative ideal-pixel arc length, normalised to [0, 1]
+};
+
+ViewPoints usable_points(const TrackFrame& f, const Camera& cam, double min_likelihood) {
+  ViewPoints v;
+  for (std::size_t k = 0; k < f.points_px.size(); ++k) {
+    if (!(f.likelihood[k] >= min_likelihood) || !f.points_px[k].allFinite()) continue;
+    v.px.push_back(f.points_px[k]);
+    v.ideal.push_back(cam.undistort(f.points_px[k]));
+    v.likelihood.push_back(f.likelihood[k]);
+  }
+  v.arc.assign(v.px.size(), 0.0);
+  for (std::size_t k = 1; k < v.px.size(); ++k) v.arc[k] = v.arc[k - 1] + (v.ideal[k] - v.ideal[k - 1]).norm();
+  if (!v.arc.empty() && v.arc.back() > 0.0)
+    for (double& a : v.arc) a /= v.arc.back();
+  return v;
+}
+
+struct Match {
+  std::size_t top;          ///< index into the top points
+  Eigen::Vector2d front_px; ///< matched front pixel (measured)
+  double front_arc;         ///< its relative arc length in the front view
+  double front_likelihood;
+};
+
+/// For each top point, the front-polyline intersection of its epipolar line nearest the same relative arc
+/// length (gated), then the longest run monotonic in front arc length.
+std::vector<Match> match_views(const ViewPoints& top, const ViewPoints& front, const Eigen::Matrix3d& F) {
+  constexpr double min_sine = 0.05;  // epipolar line nearly tangent to the curve: position undetermined
+  constexpr double arc_gate = 0.35;  // relative arc lengths of the two views differ by foreshortening
+  constexpr double end_extension = 0.5;
+  std::vector<Match> candidates;
+  for (std::size_t i = 0; i < top.ideal.size(); ++i) {
+    Eigen::Vector3d l = F * top.ideal[i].homogeneous();
+    const double norm = l.head<2>().norm();
+    if (!(norm > 0.0)) continue;
+    l /= norm;  // l . x = signed distance [px]
+    std::optional<Match> best;
+    double best_gap = arc_gate;
+    for (std::size_t j = 0; j + 1 < front.ideal.size(); ++j) {
+      const double d0 = l.dot(front.ideal[j].homogeneous()), d1 = l.dot(front.ideal[j + 1].homogeneous());
+      if (d0 == d1) continue;
+      const double seg = (front.ideal[j + 1] - front.ideal[j]).norm();
+      if (!(std::abs(d0 - d1) > min_sine * seg)) continue;
+      const double t = d0 / (d0 - d1);
+      // The end segments extend by half their length: with pixel noise the epipolar line of the base (or tip)
+      // point passes just beyond the other view's end point.
+      const double t_min = j == 0 ? -end_extension : 0.0;
+      const double t_max = j + 2 == front.ideal.size() ? 1.0 + end_extension : 1.0;
+      if (t < t_min || t > t_max) continue;
+      const double arc = front.arc[j] + t * (front.arc[j + 1] - front.arc[j]);
+      const double gap = std::abs(arc - top.arc[i]);
+      if (gap >= best_gap) continue;
+      best_gap = gap;
+      best = Match{i, front.px[j] + t * (front.px[j + 1] - front.px[j]), arc,
+                   front.likelihood[j] + t * (front.likelihood[j + 1] - front.likelihood[j])};
+    }
+    if (best) candidates.push_back(*best);
+  }
+  // Longest subsequence increasing in front arc length (O(n^2); n is a few hundred at most).
+  const std::size_t n = candidates.size();
+  std::vector<std::size_t> len(n, 1), prev(n, n);
+  std::size_t end = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < i; ++j)
+      if (candidates[j].front_arc < candidates[i].front_arc && len[j] + 1 > len[i]) {
+        len[i] = len[j] + 1;
+        prev[i] = j;
+      }
+    if (len[i] > len[end]) end = i;
+  }
+  std::vector<Match> out;
+  for (std::size_t i = n ? end : n; i < n; i = prev[i]) out.push_back(candidates[i]);
+  std::reverse(out.begin(), out.end());
+  return out;
+}
+
+/// Closest approach of the polyline to the edges: distance, point on the whisker, its arc length.
+void closest_approach(ReconstructedFrame& f, const std::vector<Edge>& edges, double threshold) {
+  double best = std::numeric_limits<double>::infinity();
+  double s_along = 0.0;
+  for (const Edge& e : edges) {
+    const Eigen::Vector3d d = e.direction.normalized();
+    double s0 = 0.0;
+    for (std::size_t k = 0; k + 1 < f.shape_W.size(); ++k) {
+      const Eigen::Vector3d p = f.shape_W[k], u = f.shape_W[k + 1] - p;
+      const Eigen::Vector3d w0 = p - e.point;
+      const double uu = u.squaredNorm(), ud = u.dot(d);
+      const double denom = uu - ud * ud;
+      double s = denom > 1e-300 ? (ud * d.dot(w0) - u.dot(w0)) / denom : 0.0;
+      s = std::clamp(s, 0.0, 1.0);
+      const Eigen::Vector3d q = p + s * u;
+      const double dist = ((q - e.point) - d.dot(q - e.point) * d).norm();
+      if (dist < best) {
+        best = dist;
+        s_along = s0 + s * std::sqrt(uu);
+        f.contact_W = q;
+      }
+      s0 += std::sqrt(uu);
+    }
+  }
+  f.approach = best;
+  f.contact = best < threshold;
+  f.contact_s = f.contact ? s_along : nan_v;
+  if (!f.contact) f.contact_W = nan3;
+}
+
+ReconstructedFrame reconstruct_frame(std::int64_t frame, const TrackFrame* top, const Camera& top_cam,
+                                     const TrackFrame* front, const Camera& front_cam, const Eigen::Matrix3d& F,
+                                     const ReconstructOptions& o) {
+  ReconstructedFrame f;
+  f.frame = frame;
+  if (!top || !front) return f;
+  const ViewPoints a = usable_points(*top, top_cam, o.min_likelihood);
+  const ViewPoints b = usable_points(*front, front_cam, o.min_likelihood);
+  f.status = FrameStatus::too_few_points;
+  if (a.px.size() < 2 || b.px.size() < 2) return f;
+  const std::vector<Match> matches = match_views(a, b, F);
+  std::vector<Eigen::Vector3d> pts;
+  std::vector<double> err, like;
+  for (const Match& m : matches) {
+    const Triangulated t = triangulate({&top_cam, &front_cam}, {a.px[m.top], m.front_px});
+    if (!t.ok) continue;
+    pts.push_back(t.p_W);
+    err.push_back(t.reprojection_px);
+    like.push_back(std::sqrt(a.likelihood[m.top] * m.front_likelihood));
+  }
+  if (pts.size() < std::size_t(o.min_points)) return f;
+  const double gate = std::max(o.outlier_px, 3.0 * median_of(err));
+  std::vector<Eigen::Vector3d> kept;
+  std::vector<double> weights;
+  double sum2 = 0.0, sum_like = 0.0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (err[i] > gate) continue;
+    kept.push_back(pts[i]);
+    weights.push_back(like[i]);
+    sum2 += err[i] * err[i];
+    sum_like += like[i];
+  }
+  f.points_used = kept.size();
+  if (kept.size() < std::size_t(o.min_points)) return f;
+  f.reprojection_px = std::sqrt(sum2 / double(kept.size()));
+  f.likelihood = sum_like / double(kept.size());
+  if (f.reprojection_px > o.max_reprojection_px) {
+    f.status = FrameStatus::reprojection;
+    return f;
+  }
+  const auto curve = fit_curve(kept, weights, std::min(o.fit_degree, int(kept.size()) - 2), o.nodes);
+  if (!curve) return f;
+  const Pose pose = pose_from_rotation(whisker_frame(curve->nodes, curve->tangent0), curve->nodes.front());
+  f.status = FrameStatus::ok;
+  f.shape_W = curve->nodes;
+  f.base_W = pose.p_W_base;
+  f.theta = pose.theta;
+  f.phi = pose.phi;
+  f.zeta = pose.zeta;
+  if (!o.edges.empty()) closest_approach(f, o.edges, o.contact_threshold);
+  return f;
+}
+
+void clear_values(ReconstructedFrame& f) {
+  const FrameStatus status = f.status;
+  const double rep = f.reprojection_px, like = f.likelihood;
+  const std::size_t used = f.points_used;
+  const std::int64_t frame = f.frame;
+  f = ReconstructedFrame();
+  f.frame = frame;
+  f.status = status;
+  f.reprojection_px = rep;
+  f.likelihood = like;
+  f.points_used = used;
+}
+
+}  // namespace
+
+ReconstructedFrame::ReconstructedFrame()
+    : reprojection_px(nan_v), likelihood(nan_v), base_W(nan3), theta(nan_v), phi(nan_v), zeta(nan_v),
+      contact_W(nan3), contact_s(nan_v), approach(nan_v) {}
+
+const char* frame_status_name(FrameStatus s) {
+  switch (s) {
+    case FrameStatus::ok: return "ok";
+    case FrameStatus::missing_view: return "missing_view";
+    case FrameStatus::too_few_points: return "too_few_points";
+    case FrameStatus::reprojection: return "reprojection";
+    case FrameStatus::inconsistent_base: return "inconsistent_base";
+  }
+  return "unknown";
+}
+
+std::size_t Reconstruction::count(FrameStatus s) const {
+  return std::size_t(std::count_if(frames.begin(), frames.end(), [&](const auto& f) { return f.status == s; }));
+}
+
+void ReconstructOptions::validate() const {
+  auto require = [](bool ok, const std::string& field, double v, const char* expected) {
+    if (!ok) throw std::invalid_argument(field + " must be " + expected + ", got " + std::to_string(v));
+  };
+  require(min_likelihood >= 0.0 && min_likelihood <= 1.0, "min_likelihood", min_likelihood, "in [0, 1]");
+  require(min_points >= 3, "min_points", min_points, ">= 3");
+  require(max_reprojection_px > 0.0, "max_reprojection_px", max_reprojection_px, "> 0");
+  require(outlier_px > 0.0, "outlier_px", outlier_px, "> 0");
+  require(fit_degree >= 1 && fit_degree <= 9, "fit_degree", fit_degree, "in [1, 9]");
+  require(nodes >= 2, "nodes", nodes, ">= 2");
+  require(contact_threshold > 0.0 && std::isfinite(contact_threshold), "contact_threshold", contact_threshold, "> 0");
+  require(base_jump > 0.0, "base_jump", base_jump, "> 0");
+  require(base_window >= 1, "base_window", base_window, ">= 1");
+  require(frame_rate > 0.0 && std::isfinite(frame_rate), "frame_rate", frame_rate, "> 0");
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    if (!edges[k].point.allFinite() || !edges[k].direction.allFinite() || edges[k].direction.norm() == 0.0)
+      throw std::invalid_argument("edges[" + std::to_string(k) + "] needs a finite point and non-zero direction");
+}
+
+Reconstruction reconstruct(const Tracks2D& top, const Camera& top_camera, const Tracks2D& front,
+                           const Camera& front_camera, const ReconstructOptions& o, const RunControl& control) {
+  o.validate();
+  std::vector<std::int64_t> frames;
+  for (const auto* t : {&top, &front})
+    for (const auto& f : t->frames) frames.push_back(f.frame);
+  std::sort(frames.begin(), frames.end());
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  const Eigen::Matrix3d F = fundamental_matrix(top_camera, front_camera);
+  Reconstruction rec;
+  rec.frames.resize(frames.size());
+  ProgressCounter progress(control, frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    rec.frames[i] = reconstruct_frame(frames[i], top.find(frames[i]), top_camera, front.find(frames[i]), front_camera,
+                                      F, o);
+    progress.advance();
+  }
+  // Identity check: a base far from the median base of the neighbouring good frames is another whisker.
+  std::vector<std::size_t> good;
+  for (std::size_t i = 0; i < rec.frames.size(); ++i)
+    if (rec.frames[i].ok()) good.push_back(i);
+  std::vector<bool> inconsistent(rec.frames.size(), false);
+  for (std::size_t g = 0; g < good.size(); ++g) {
+    const std::size_t lo = g >= std::size_t(o.base_window) ? g - std::size_t(o.base_window) : 0;
+    const std::size_t hi = std::min(good.size() - 1, g + std::size_t(o.base_window));
+    Eigen::Vector3d med;
+    for (int a = 0; a < 3; ++a) {
+      std::vector<double> v;
+      for (std::size_t k = lo; k <= hi; ++k) v.push_back(rec.frames[good[k]].base_W[a]);
+      med[a] = median_of(v);
+    }
+    inconsistent[good[g]] = (rec.frames[good[g]].base_W - med).norm() > o.base_jump;
+  }
+  for (std::size_t i = 0; i < rec.frames.size(); ++i)
+    if (inconsistent[i]) {
+      rec.frames[i].status = FrameStatus::inconsistent_base;
+      clear_values(rec.frames[i]);
+    }
+  // Undeflected shape of each contact period (periods over the reconstructed frames).
+  good.clear();
+  for (std::size_t i = 0; i < rec.frames.size(); ++i)
+    if (rec.frames[i].ok()) good.push_back(i);
+  for (std::size_t g = 0; g < good.size(); ++g) {
+    const auto& f = rec.frames[good[g]];
+    if (!f.contact || (g > 0 && rec.frames[good[g - 1]].contact)) continue;
+    std::size_t last = g;
+    while (last + 1 < good.size() && rec.frames[good[last + 1]].contact) ++last;
+    UndeflectedShape u;
+    u.first_frame = f.frame;
+    u.last_frame = rec.frames[good[last]].frame;
+    if (g > 0) {
+      u.source_frame = rec.frames[good[g - 1]].frame;
+      u.shape_W = rec.frames[good[g - 1]].shape_W;
+    } else if (last + 1 < good.size()) {
+      u.source_frame = rec.frames[good[last + 1]].frame;
+      u.shape_W = rec.frames[good[last + 1]].shape_W;
+    }
+    rec.undeflected.push_back(std::move(u));
+  }
+  return rec;
+}
+
+trial::Trial to_trial(const Reconstruction& rec, const ReconstructOptions& o, const trial::TrialMaterial& material,
+                      const std::string& source) {
+  trial::Trial t;
+  t.source = source;
+  t.meta.material = material;
+  t.meta.edges = o.edges;
+  t.meta.frame_rate = o.frame_rate;
+  bool any_shape = false;
+  for (const auto& f : rec.frames) {
+    t.time.push_back(double(f.frame) / o.frame_rate);
+    t.base_W.push_back(f.base_W);
+    t.theta.push_back(f.theta);
+    t.phi.push_back(f.phi);
+    t.zeta.push_back(f.zeta);
+    t.contact.push_back(f.ok() && f.contact ? 1 : 0);
+    t.contact_W.push_back(f.ok() && f.contact ? f.contact_W : nan3);
+    t.shape_W.push_back(f.shape_W);
+    any_shape = any_shape || !f.shape_W.empty();
+    t.reconstructed.push_back(f.ok() ? 1 : 0);
+    t.reprojection_px.push_back(f.reprojection_px);
+    t.likelihood.push_back(f.likelihood);
+  }
+  if (!any_shape) t.shape_W.clear();
+  for (const auto& u : rec.undeflected)
+    if (!u.shape_W.empty()) {
+      t.meta.rest_shape = u.shape_W;
+      break;
+    }
+  if (t.meta.rest_shape.empty())  // no contact period: the first free frame's shape
+    for (const auto& f : rec.frames)
+      if (f.ok()) {
+        t.meta.rest_shape = f.shape_W;
+        break;
+      }
+  return t;
+}
+
+}  // namespace vibrissa::recon

@@ -1,0 +1,135 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "test_cameras.hpp"
+#include "vibrissa/core/pose.hpp"
+#include "vibrissa/recon/reconstruct.hpp"
+
+using namespace vibrissa;
+using namespace vibrissa::recon;
+
+namespace {
+constexpr double deg = std::numbers::pi / 180.0;
+
+/// A 30 mm whisker y = 8 x^2 (B frame) placed by a pose, sampled at `n` points.
+std::vector<Eigen::Vector3d> whisker_points(const Pose& pose, int n = 60) {
+  const Placement X(pose);
+  std::vector<Eigen::Vector3d> p;
+  for (int i = 0; i < n; ++i) {
+    const double x = 0.03 * i / (n - 1);
+    p.push_back(X.to_world(Eigen::Vector3d(x, 8.0 * x * x, 0.0)));
+  }
+  return p;
+}
+TrackFrame view(std::int64_t frame, const Camera& cam, const std::vector<Eigen::Vector3d>& pts) {
+  TrackFrame f;
+  f.frame = frame;
+  for (const auto& p : pts) {
+    f.points_px.push_back(cam.project(p));
+    f.likelihood.push_back(1.0);
+  }
+  return f;
+}
+Pose pose_at(int i) {
+  Pose p;
+  p.p_W_base = Eigen::Vector3d(0.001, -0.002, 0.0005);
+  p.theta = (5.0 + 3.0 * i) * deg;
+  p.phi = (10.0 - 0.5 * i) * deg;
+  p.zeta = (20.0 + 1.0 * i) * deg;
+  return p;
+}
+}  // namespace
+
+TEST(Reconstruct, ExactViewsRecoverBaseAnglesAndShape) {
+  const Camera top = test_support::top_test_camera(-0.1, 0.02), front = test_support::front_test_camera(0.05, 0.0);
+  Tracks2D a, b;
+  for (int i = 0; i < 10; ++i) {
+    const auto pts = whisker_points(pose_at(i));
+    a.frames.push_back(view(i, top, pts));
+    b.frames.push_back(view(i, front, std::vector<Eigen::Vector3d>(pts.begin(), pts.end() - 5)));  // shorter track
+  }
+  ReconstructOptions o;
+  const Reconstruction rec = reconstruct(a, top, b, front, o);
+  ASSERT_EQ(rec.frames.size(), 10u);
+  for (int i = 0; i < 10; ++i) {
+    const auto& f = rec.frames[std::size_t(i)];
+    ASSERT_TRUE(f.ok()) << frame_status_name(f.status);
+    EXPECT_LT((f.base_W - pose_at(i).p_W_base).norm(), 2e-6);
+    EXPECT_NEAR(f.theta, pose_at(i).theta, 0.05 * deg);
+    EXPECT_NEAR(f.phi, pose_at(i).phi, 0.05 * deg);
+    EXPECT_NEAR(f.zeta, pose_at(i).zeta, 0.2 * deg);
+    EXPECT_LT(f.reprojection_px, 1e-3);
+    EXPECT_FALSE(f.contact);
+  }
+}
+
+TEST(Reconstruct, FlagsMissingLowLikelihoodAndSwappedFramesWithoutInventingValues) {
+  const Camera top = test_support::top_test_camera(), front = test_support::front_test_camera();
+  Tracks2D a, b;
+  for (int i = 0; i < 40; ++i) {
+    const auto pts = whisker_points(pose_at(0));
+    a.frames.push_back(view(i, top, pts));
+    if (i == 5) continue;  // dropped frame in the front view
+    if (i == 9) {  // identity swap: the front view tracked a whisker 2 mm higher
+      Pose other = pose_at(0);
+      other.p_W_base.z() += 0.002;
+      b.frames.push_back(view(i, front, whisker_points(other)));
+      continue;
+    }
+    b.frames.push_back(view(i, front, pts));
+    if (i == 7)
+      for (auto& l : b.frames.back().likelihood) l = 0.1;
+  }
+  ReconstructOptions o;
+  o.edges.push_back({Eigen::Vector3d(0.02, 0.0, 0.0), Eigen::Vector3d::UnitZ()});
+  const Reconstruction rec = reconstruct(a, top, b, front, o);
+  EXPECT_EQ(rec.frames[5].status, FrameStatus::missing_view);
+  EXPECT_EQ(rec.frames[7].status, FrameStatus::too_few_points);
+  EXPECT_EQ(rec.frames[9].status, FrameStatus::inconsistent_base);
+  EXPECT_EQ(rec.count(FrameStatus::ok), 37u);
+  const trial::Trial t = to_trial(rec, o);
+  for (std::size_t i : {5u, 7u, 9u}) {
+    EXPECT_EQ(t.reconstructed[i], 0);
+    EXPECT_TRUE(std::isnan(t.theta[i]));
+    EXPECT_TRUE(std::isnan(t.base_W[i].x()));
+    EXPECT_EQ(t.contact[i], 0);
+  }
+  EXPECT_EQ(trial::reconstructed_frames_only(t).frames(), 37u);
+}
+
+TEST(Reconstruct, ContactWithAPegGivesThePointNearestTheEdgeAndItsArcLength) {
+  const Camera top = test_support::top_test_camera(), front = test_support::front_test_camera();
+  const Pose pose = pose_at(0);
+  const auto pts = whisker_points(pose, 200);
+  // A vertical peg through the whisker point at x_B = 20 mm.
+  const Placement X(pose);
+  const Eigen::Vector3d on = X.to_world(Eigen::Vector3d(0.02, 8.0 * 0.02 * 0.02, 0.0));
+  Tracks2D a, b;
+  a.frames.push_back(view(0, top, pts));
+  b.frames.push_back(view(0, front, pts));
+  ReconstructOptions o;
+  o.edges.push_back({on, Eigen::Vector3d::UnitZ()});
+  const Reconstruction rec = reconstruct(a, top, b, front, o);
+  ASSERT_TRUE(rec.frames[0].ok());
+  EXPECT_TRUE(rec.frames[0].contact);
+  EXPECT_LT(rec.frames[0].approach, 1e-6);
+  // The whisker and a vertical line through one of its points: the closest point is that point.
+  EXPECT_LT((rec.frames[0].contact_W - on).norm(), 20e-6);
+  const double s = (std::asinh(16.0 * 0.02) + 16.0 * 0.02 * std::sqrt(1.0 + std::pow(16.0 * 0.02, 2))) / 32.0;
+  EXPECT_NEAR(rec.frames[0].contact_s, s, 20e-6);
+  o.edges[0].point += Eigen::Vector3d(0.0, 0.001, 0.0);  // 1 mm away: no contact
+  EXPECT_FALSE(reconstruct(a, top, b, front, o).frames[0].contact);
+}
+
+TEST(Reconstruct, RejectsInvalidOptionsNamingTheField) {
+  ReconstructOptions o;
+  o.min_likelihood = 2.0;
+  try {
+    o.validate();
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("min_likelihood"), std::string::npos);
+  }
+}

@@ -1,0 +1,144 @@
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+#include "vibrissa/recon/tracks.hpp"
+
+using namespace vibrissa::recon;
+
+namespace {
+std::string temp_file(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no error";
+}
+template <class T>
+void put(std::string& s, T v) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  s.append(b, sizeof(T));
+}
+}  // namespace
+
+TEST(PointsCsv, ReadsPointsInOrderAndSkipsUntracked) {
+  const auto path = temp_file("p.csv", "frame,point,x_px,y_px,likelihood\n3,1,11,21,0.9\n3,0,10,20,1\n5,0,1,2,\n"
+                                       "5,1,3,4,0.5\n7,0,nan,1,1\n");
+  const Tracks2D t = read_points_csv(path);
+  ASSERT_EQ(t.frames.size(), 2u);
+  EXPECT_EQ(t.frames[0].frame, 3);
+  EXPECT_EQ(t.frames[0].points_px[0], Eigen::Vector2d(10, 20));
+  EXPECT_EQ(t.frames[0].likelihood[1], 0.9);
+  EXPECT_EQ(t.frames[1].points_px.size(), 1u);  // the point without likelihood is untracked
+  EXPECT_EQ(t.find(5), &t.frames[1]);
+  EXPECT_EQ(t.find(4), nullptr);
+}
+
+TEST(PointsCsv, ErrorsNameFileLineAndField) {
+  auto path = temp_file("bad.csv", "frame,point,x_px,y_px\n0,0,1,2\n0,1,abc,2\n");
+  EXPECT_EQ(error_of([&] { read_points_csv(path); }), path + ": line 3, field 'x_px': 'abc' is not a finite number");
+  path = temp_file("bad2.csv", "frame,point,x_px\n");
+  EXPECT_EQ(error_of([&] { read_points_csv(path); }), path + ": line 1, field 'y_px': required column is missing");
+  path = temp_file("bad3.csv", "frame,point,x_px,y_px,likelihood\n-1,0,1,2,1\n");
+  EXPECT_EQ(error_of([&] { read_points_csv(path); }), path + ": line 2, field 'frame': '-1' is not a non-negative integer");
+}
+
+TEST(DeepLabCutCsv, ReadsKeypointsWithLikelihoodAndSelection) {
+  const auto path = temp_file("dlc.csv",
+                              "scorer,DLC_net,DLC_net,DLC_net,DLC_net,DLC_net,DLC_net\n"
+                              "bodyparts,w0,w0,w0,w1,w1,w1\n"
+                              "coords,x,y,likelihood,x,y,likelihood\n"
+                              "0,1.5,2.5,0.99,3,4,0.2\n"
+                              "1,,,,5,6,0.7\n");
+  Tracks2D t = read_tracks(path);
+  ASSERT_EQ(t.frames.size(), 2u);
+  EXPECT_EQ(t.frames[0].points_px.size(), 2u);
+  EXPECT_EQ(t.frames[0].points_px[0], Eigen::Vector2d(1.5, 2.5));
+  EXPECT_EQ(t.frames[0].likelihood[1], 0.2);
+  EXPECT_EQ(t.frames[1].points_px.size(), 1u);
+  t = read_dlc_csv(path, {"w1", "w0"});
+  EXPECT_EQ(t.frames[0].points_px[0], Eigen::Vector2d(3, 4));
+  EXPECT_EQ(error_of([&] { read_dlc_csv(path, {"w2"}); }), path + ": field 'bodyparts': no x and y columns for bodypart 'w2'");
+  const auto bad = temp_file("dlc_bad.csv", "scorer,a,a,a\nbodyparts,w0,w0,w0\ncoords,x,y,likelihood\n0,1,2,1.5\n");
+  EXPECT_EQ(error_of([&] { read_dlc_csv(bad); }), bad + ": line 4, field 'w0.likelihood': frame 0: must lie in [0, 1]");
+}
+
+TEST(DeepLabCutCsv, MultiAnimalFilesNeedAnIndividual) {
+  const auto path = temp_file("dlcma.csv",
+                              "scorer,n,n,n,n,n,n\nindividuals,m1,m1,m1,m2,m2,m2\nbodyparts,w0,w0,w0,w0,w0,w0\n"
+                              "coords,x,y,likelihood,x,y,likelihood\n0,1,2,1,7,8,1\n");
+  EXPECT_NE(error_of([&] { read_dlc_csv(path); }).find("individuals"), std::string::npos);
+  EXPECT_EQ(read_dlc_csv(path, {}, "m2").frames[0].points_px[0], Eigen::Vector2d(7, 8));
+}
+
+TEST(Janelia, ReadsBinaryAndTextWhiskersWithMeasurementIdentities) {
+  // whiskbin1: 12-byte magic, records {int id, time, len; float x[len], y[len], thick[len], score[len]}, int count.
+  std::string bin("bwhiskbin1\0\0", 12);
+  auto segment = [&](int id, int frame, std::vector<float> x, std::vector<float> y) {
+    put<std::int32_t>(bin, id);
+    put<std::int32_t>(bin, frame);
+    put<std::int32_t>(bin, std::int32_t(x.size()));
+    for (auto* v : {&x, &y, &x, &y})
+      for (float f : *v) put<float>(bin, f);
+  };
+  segment(0, 0, {100, 50, 10}, {1, 2, 3});  // stored tip first
+  segment(1, 0, {5, 6, 7}, {9, 9, 9});
+  segment(0, 1, {11, 60, 110}, {4, 5, 6});
+  put<std::int32_t>(bin, 3);
+  const auto whiskers = temp_file("w.whiskers", bin);
+  const auto segs = read_whiskers(whiskers);
+  ASSERT_EQ(segs.size(), 3u);
+  EXPECT_EQ(segs[2].frame, 1);
+  EXPECT_EQ(segs[2].x[2], 110.0f);
+  // measv3: 8-byte magic, n_rows, n_measures, rows last first: 10 ints + char, data, velocity.
+  std::string meas("measv3\0\0", 8);
+  put<std::int32_t>(meas, 3);
+  put<std::int32_t>(meas, 2);
+  auto row = [&](int fid, int wid, int state) {
+    for (int v : {0, fid, wid, state, 0, 0, 0, 1, 0, 2}) put<std::int32_t>(meas, v);
+    meas.push_back('x');
+    for (double v : {10.0, 2.0, 0.0, 0.0}) put<double>(meas, v);  // follicle (10, 2) in columns 0, 1
+  };
+  row(1, 0, 0);  // written last row first
+  row(0, 1, -1);
+  row(0, 0, 0);
+  const auto measurements = temp_file("w.measurements", meas);
+  const auto rows = read_measurements(measurements);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].frame, 0);
+  EXPECT_EQ(rows[2].frame, 1);
+  EXPECT_EQ(rows[1].identity, -1);
+  const Tracks2D t = janelia_tracks(whiskers, measurements, 0);
+  ASSERT_EQ(t.frames.size(), 2u);
+  EXPECT_EQ(t.frames[0].points_px.front(), Eigen::Vector2d(10, 3));  // oriented follicle first
+  EXPECT_EQ(t.frames[1].points_px.front(), Eigen::Vector2d(11, 4));
+  // The text variant of the same segments.
+  const auto text = temp_file("t.whiskers", "whisker1 (frame,id,time,n,x1,y1,thick1,score1...)\n"
+                                            "0,0,0,3,100,1,1,1,50,2,1,1,10,3,1,1\n0,1,0,3,5,9,1,1,6,9,1,1,7,9,1,1\n"
+                                            "1,0,1,3,11,4,1,1,60,5,1,1,110,6,1,1\n");
+  const Tracks2D tt = janelia_tracks(text, measurements, 0);
+  ASSERT_EQ(tt.frames.size(), 2u);
+  EXPECT_EQ(tt.frames[0].points_px, t.frames[0].points_px);
+  // Errors name file, frame/record and field.
+  const auto cut = temp_file("cut.whiskers", bin.substr(0, 40) + bin.substr(bin.size() - 4));
+  EXPECT_NE(error_of([&] { read_whiskers(cut); }).find(cut + ": segment 1 (frame 0), field 'len'"), std::string::npos);
+  const auto badtext = temp_file("bad.whiskers", "whisker1 x\n0,0,0,2,1,1,1,1\n");
+  EXPECT_EQ(error_of([&] { read_whiskers(badtext); }), badtext + ": line 2, field 'n': frame 0: n = 2 needs 12 cells, got 8");
+  EXPECT_NE(error_of([&] { read_measurements(whiskers); }).find(whiskers + ": header"), std::string::npos);
+}
+
+TEST(DeepLabCutH5, ReportsTheLimitationNamingTheFile) {
+  const auto path = temp_file("x.h5", "");
+  EXPECT_NE(error_of([&] { read_tracks(path); }).find(path + ": DeepLabCut HDF5"), std::string::npos);
+}
