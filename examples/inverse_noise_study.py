@@ -37,7 +37,10 @@ def identifiability_table(w):
     for signals in SETS:
         for frac in (0.25, 0.5, 0.75):
             fwd = vibrissa.solve_force(w, FORCE, frac * L, ZETA)
-            r = vibrissa.solve_base_wrench(w, fwd.force, fwd.moment, signals=signals, noise=noise_sd(signals))
+            # Warm-started at the true contact, so that the linearisation is taken there even when the set
+            # cannot tell the contacts apart.
+            r = vibrissa.solve_base_wrench(w, fwd.force, fwd.moment, signals=signals, noise=noise_sd(signals),
+                                           warm=fwd)
             idf = r.identifiability
             if not idf.identifiable:
                 nd = idf.null_direction
@@ -53,7 +56,7 @@ def identifiability_table(w):
 
 def monte_carlo(w, fracs, scales, signals, trials, rng):
     """RMS contact-point error [m] (Monte Carlo) and the linearised prediction, shape (len(fracs), len(scales))."""
-    R = w.placement.R_WB
+    R = np.eye(3)  # the whisker sits at the default pose: world = whisker frame B
     F, M, truth, predicted = [], [], [], []
     for frac in fracs:
         fwd = vibrissa.solve_force(w, FORCE, frac * L, ZETA)
@@ -64,7 +67,7 @@ def monte_carlo(w, fracs, scales, signals, trials, rng):
             M.append(fwd.moment + noise[:, 3:] @ R.T)
             truth.append(fwd.contact_point)
             lin = vibrissa.solve_base_wrench(w, fwd.force, fwd.moment, signals=signals,
-                                             noise=noise_sd(signals, scale))
+                                             noise=noise_sd(signals, scale), warm=fwd)
             predicted.append(np.sqrt(np.trace(lin.identifiability.contact_point_covariance)))
     # One weighting for every series: the noise scales forces and moments alike, so the fit does not change.
     b = vibrissa.solve_base_wrench_batch(w, np.array(F), np.array(M), signals=signals, noise=noise_sd(signals))

@@ -121,7 +121,7 @@ detail::LMResult fit_m(const Problem& p, const Eigen::Vector3d& u0, int max_iter
   return detail::levenberg_marquardt(Residual<M>{p}, u0, fit_bounds(), p.tolerance, max_iterations);
 }
 
-detail::LMResult fit(const Problem& p, const Eigen::Vector3d& u0, int max_iterations) {
+detail::LMResult fit_raw(const Problem& p, const Eigen::Vector3d& u0, int max_iterations) {
   switch (p.m()) {
     case 1: return fit_m<1>(p, u0, max_iterations);
     case 2: return fit_m<2>(p, u0, max_iterations);
@@ -130,6 +130,16 @@ detail::LMResult fit(const Problem& p, const Eigen::Vector3d& u0, int max_iterat
     case 5: return fit_m<5>(p, u0, max_iterations);
     default: return fit_m<6>(p, u0, max_iterations);
   }
+}
+
+/// A least-squares fit from u0. An over-determined fit also converges when its iteration stalls before the
+/// limit: no step, however damped, lowers the squares, so u is a minimum to rounding. The objective is only
+/// piecewise smooth in s (the loaded link changes at each node), and with noisy signals its minimum often
+/// sits on such a kink, where the gradient does not vanish.
+detail::LMResult fit(const Problem& p, const Eigen::Vector3d& u0, int max_iterations) {
+  detail::LMResult lm = fit_raw(p, u0, max_iterations);
+  if (!lm.converged && p.m() > 3 && lm.iterations < max_iterations && std::isfinite(lm.cost)) lm.converged = true;
+  return lm;
 }
 
 /// Exact Jacobians at u: of the chosen signals (natural units, m x 3) and of the contact point in B (3 x 3).
