@@ -200,28 +200,11 @@ std::vector<double> line_of_action_starts(const Problem& p) {
 /// A fit from starting arc length s0 (scaled) by continuation in the load from the unloaded whisker (the
 /// signals scaled by lambda = 0 -> 1): large deflections leave the direct start far off.
 detail::LMResult fit_by_continuation(const Problem& p, double s0, int max_iterations) {
-  int iterations = 0;
-  double lambda = 0.0, step = 0.125;
-  Eigen::Vector3d u(0.0, 0.0, s0);
-  detail::LMResult last;
-  last.cost = std::numeric_limits<double>::infinity();
-  while (lambda < 1.0 && step >= 1.0 / 64.0) {
-    const double next = std::min(1.0, lambda + step);
-    const Problem q = p.scaled(next);
-    const detail::LMResult a = fit(q, lambda == 0.0 ? start_at(q, s0) : u, max_iterations);
-    iterations += a.iterations;
-    if (a.converged) {
-      u = a.u;
-      lambda = next;
-      last = a;
-      step = std::min(2.0 * step, 0.25);
-    } else {
-      step *= 0.5;
-    }
-  }
-  last.converged = last.converged && lambda >= 1.0;
-  last.iterations = iterations;
-  return last;
+  auto solve_at = [&](double lambda, const Eigen::Vector3d& u, bool first) {
+    const Problem q = p.scaled(lambda);
+    return fit(q, first ? start_at(q, s0) : u, max_iterations);
+  };
+  return detail::load_continuation(solve_at, Eigen::Vector3d(0.0, 0.0, s0), 1.0 / 64.0);
 }
 
 BaseWrenchRoot root_of(const Problem& p, const Placement& X, const detail::LMResult& lm) {

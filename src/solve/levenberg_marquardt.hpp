@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <tuple>
 #include <type_traits>
 
@@ -127,6 +128,35 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
   out.iterations = it;
   out.at_upper_bound = (u.array() >= bounds.upper.array() - 1e-12).any();
   return out;
+}
+
+/// Continuation in a load factor lambda from 0 to 1: `solve_at(lambda, u, first)` solves the problem at
+/// lambda from u (`first`: no converged step yet, u is the given start). The step doubles after a success
+/// (up to 1/4) and halves after a failure, giving up below `min_step`. Returns the last converged result
+/// (cost +inf if none) with `converged` only if lambda reached 1, and the iterations of every attempt.
+template <class SolveAt>
+LMResult load_continuation(SolveAt&& solve_at, Eigen::Vector3d u, double min_step) {
+  LMResult last;
+  last.u = u;
+  last.cost = std::numeric_limits<double>::infinity();
+  int iterations = 0;
+  double lambda = 0.0, step = 0.125;
+  while (lambda < 1.0 && step >= min_step) {
+    const double next = std::min(1.0, lambda + step);
+    const LMResult a = solve_at(next, u, lambda == 0.0);
+    iterations += a.iterations;
+    if (a.converged) {
+      u = a.u;
+      lambda = next;
+      last = a;
+      step = std::min(2.0 * step, 0.25);
+    } else {
+      step *= 0.5;
+    }
+  }
+  last.converged = last.converged && lambda >= 1.0;
+  last.iterations = iterations;
+  return last;
 }
 
 }  // namespace vibrissa::detail
