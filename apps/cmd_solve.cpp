@@ -15,7 +15,7 @@ void register_solve(CLI::App& app) {
   cmd->add_option("-o,--output", *out_path, "write the result here (JSON) instead of standard output");
   cmd->callback([case_path, out_path] {
     const Case c = case_from_json(read_json_file(*case_path));
-    const nlohmann::json result = solution_to_json(solve_case(c));
+    const nlohmann::json result = solve_case_to_json(c);
     if (out_path->empty())
       std::cout << result.dump(2) << "\n";
     else

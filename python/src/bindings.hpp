@@ -16,6 +16,7 @@ void bind_core(py::module_& m);   // core.cpp: Scheme, BaseJoint, Pose, WhiskerP
 void bind_solve(py::module_& m);  // solve.cpp: Status, SolveOptions, Edge, LoadState, Solution, solve_*
 void bind_contact(py::module_& m);  // contact.cpp: ContactMode, ContactTracker
 void bind_batch(py::module_& m);  // batch.cpp: solve_*_batch (GIL released, OpenMP)
+void bind_inverse(py::module_& m);  // inverse.cpp: solve_base_wrench, BaseWrenchResult, the series batch
 void bind_case(py::module_& m);   // case.cpp: Case JSON round trip (same code as `vibrissa solve`)
 void bind_trial(py::module_& m);  // trial.cpp: Trial, read_trial, synthesis and analysis (= `vibrissa synth/trial`)
 void bind_array(py::module_& m);  // array.cpp: array simulation (= `vibrissa array`)

@@ -74,6 +74,11 @@ py::dict load_to_dict(const Load& load) {
           d["direction"] = to_array(l.edge.direction);
           d["arc_length_hint"] = l.arc_length_hint;
           d["approach"] = opt3(l.approach);
+        } else if constexpr (std::is_same_v<T, BaseWrenchLoad>) {
+          d["mode"] = "base_wrench";
+          d["force"] = to_array(l.force);
+          d["moment"] = to_array(l.moment);
+          d["signals"] = l.signals.name();
         } else {
           d["mode"] = "frictional_edge";
           d["point"] = to_array(l.edge.point);

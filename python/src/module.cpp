@@ -15,6 +15,7 @@ PYBIND11_MODULE(_vibrissa, m) {
   vibrissa::python::bind_solve(m);
   vibrissa::python::bind_contact(m);
   vibrissa::python::bind_batch(m);
+  vibrissa::python::bind_inverse(m);
   vibrissa::python::bind_case(m);
   vibrissa::python::bind_trial(m);
   vibrissa::python::bind_array(m);

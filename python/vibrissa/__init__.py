@@ -8,6 +8,8 @@ The compiled core (``vibrissa._vibrissa``) mirrors the C++ library one to one: :
 * batch solves over many frames / whiskers that release the GIL and use every core
   (:func:`solve_point_batch`, :func:`solve_edge_batch`, :func:`solve_frictional_edge_batch`,
   :func:`solve_force_batch`), returning a :class:`BatchResult` of stacked NumPy arrays;
+* the inverse: where and how hard the whisker was touched from the force/moment at its base
+  (:func:`solve_base_wrench`, :func:`solve_base_wrench_batch`; docs/inverse.md);
 * the JSON case round trip of ``vibrissa solve`` (:func:`load_case`, :func:`make_whisker`,
   :func:`solve_case_file`);
 * the whole pipeline of the CLI with NumPy arrays out: :func:`synthesize_trial` (``vibrissa synth``),
@@ -22,6 +24,9 @@ SI units throughout: m, N, N·m, Pa, rad. World-frame quantities unless the name
 
 from ._vibrissa import (  # noqa: F401
     BaseJoint,
+    BaseWrenchIdentifiability,
+    BaseWrenchResult,
+    BaseWrenchRoot,
     Case,
     ContactMode,
     ContactState,
@@ -48,6 +53,7 @@ from ._vibrissa import (  # noqa: F401
     solve_edge,
     solve_force,
     solve_frictional_edge,
+    solve_base_wrench,
     solve_point,
     status_from_string,
     write_result,
@@ -60,6 +66,7 @@ from .batch import (  # noqa: F401
     solve_frictional_edge_batch,
     solve_point_batch,
 )
+from .inverse import BaseWrenchBatch, solve_base_wrench_batch  # noqa: F401
 from .case import case_from_dict, load_case, make_whisker, solve_case_file  # noqa: F401
 from .pipeline import (  # noqa: F401
     ArrayResult,
@@ -84,4 +91,6 @@ __all__ = [
     "solution_to_json", "solve_case", "solve_case_file", "solve_dead_load", "solve_edge", "solve_edge_batch",
     "solve_force", "solve_force_batch", "solve_frictional_edge", "solve_frictional_edge_batch", "solve_point",
     "solve_point_batch", "status_from_string", "write_result",
+    "BaseWrenchBatch", "BaseWrenchIdentifiability", "BaseWrenchResult", "BaseWrenchRoot", "solve_base_wrench",
+    "solve_base_wrench_batch",
 ]

@@ -1,6 +1,9 @@
 """Type stubs of the `vibrissa` package (see docs/python.md)."""
 
 from ._vibrissa import BaseJoint as BaseJoint
+from ._vibrissa import BaseWrenchIdentifiability as BaseWrenchIdentifiability
+from ._vibrissa import BaseWrenchResult as BaseWrenchResult
+from ._vibrissa import BaseWrenchRoot as BaseWrenchRoot
 from ._vibrissa import Case as Case
 from ._vibrissa import ContactMode as ContactMode
 from ._vibrissa import ContactState as ContactState
@@ -22,6 +25,7 @@ from ._vibrissa import nearest_rest_point as nearest_rest_point
 from ._vibrissa import pose_from_rotation as pose_from_rotation
 from ._vibrissa import rotation_from_angles as rotation_from_angles
 from ._vibrissa import solution_to_json as solution_to_json
+from ._vibrissa import solve_base_wrench as solve_base_wrench
 from ._vibrissa import solve_case as solve_case
 from ._vibrissa import solve_dead_load as solve_dead_load
 from ._vibrissa import solve_edge as solve_edge
@@ -37,6 +41,8 @@ from .batch import solve_force_batch as solve_force_batch
 from .batch import solve_frictional_edge_batch as solve_frictional_edge_batch
 from .batch import solve_point_batch as solve_point_batch
 from .case import case_from_dict as case_from_dict
+from .inverse import BaseWrenchBatch as BaseWrenchBatch
+from .inverse import solve_base_wrench_batch as solve_base_wrench_batch
 from .case import load_case as load_case
 from .case import make_whisker as make_whisker
 from .case import solve_case_file as solve_case_file

@@ -66,6 +66,47 @@ Edge edge_from_json(const json& j) {
   return e;
 }
 
+SignalSet signals_from_json(const json& j) {
+  if (j.is_string()) return SignalSet::parse(j.get<std::string>(), "load.signals");
+  if (!j.is_array()) fail("load.signals must be a preset name or an array of signal names, got " + j.dump());
+  std::vector<std::string> names;
+  for (const auto& e : j) {
+    if (!e.is_string()) fail("load.signals must hold signal names (Fx ... Mz), got " + e.dump());
+    names.push_back(e.get<std::string>());
+  }
+  return SignalSet::from_names(names, "load.signals");
+}
+
+/// "noise": m standard deviations, or an m x m covariance (rows in signal order), SI.
+Eigen::MatrixXd noise_from_json(const json& j, int m) {
+  if (!j.is_array() || j.size() != static_cast<std::size_t>(m))
+    fail("load.noise must hold " + std::to_string(m) + " standard deviations or " + std::to_string(m) +
+         " covariance rows (one per signal), got " + j.dump());
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, m);
+  if (!j[0].is_array()) {
+    const auto sd = numbers(j, "load.noise");
+    for (int i = 0; i < m; ++i) {
+      if (!(sd[static_cast<std::size_t>(i)] > 0.0))
+        fail("load.noise[" + std::to_string(i) + "] must be positive, got " + std::to_string(sd[static_cast<std::size_t>(i)]));
+      S(i, i) = sd[static_cast<std::size_t>(i)] * sd[static_cast<std::size_t>(i)];
+    }
+    return S;
+  }
+  for (int i = 0; i < m; ++i) {
+    const std::string row = "load.noise[" + std::to_string(i) + "]";
+    const auto r = numbers(j[static_cast<std::size_t>(i)], row);
+    if (r.size() != static_cast<std::size_t>(m)) fail(row + " must hold " + std::to_string(m) + " numbers");
+    for (int k = 0; k < m; ++k) S(i, k) = r[static_cast<std::size_t>(k)];
+  }
+  return S;
+}
+
+json matrix_to_json(const Eigen::Matrix3d& M) {
+  json out = json::array();
+  for (int i = 0; i < 3; ++i) out.push_back(json::array({M(i, 0), M(i, 1), M(i, 2)}));
+  return out;
+}
+
 }  // namespace
 
 json to_json(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
@@ -131,7 +172,8 @@ Whisker whisker_from_json(const json& j) {
 }
 
 Load load_from_json(const json& j) {
-  if (!j.is_object() || !j.contains("mode")) fail("load.mode is required (force, dead_load, point, edge, frictional_edge)");
+  if (!j.is_object() || !j.contains("mode"))
+    fail("load.mode is required (force, dead_load, point, edge, frictional_edge, base_wrench)");
   const json& mode = j.at("mode");
   if (mode == "force") {
     reject_unknown(j, "load", {"mode", "force", "arc_length", "angle"});
@@ -172,7 +214,17 @@ Load load_from_json(const json& j) {
     if (j.contains("approach")) l.approach = vec3(j.at("approach"), "load.approach");
     return l;
   }
-  fail("load.mode must be one of force, dead_load, point, edge, frictional_edge; got " + mode.dump());
+  if (mode == "base_wrench") {
+    reject_unknown(j, "load", {"mode", "force", "moment", "signals", "noise"});
+    if (!j.contains("force") || !j.contains("moment")) fail("load: base_wrench mode needs force [3] and moment [3]");
+    BaseWrenchLoad l;
+    l.force = vec3(j.at("force"), "load.force");
+    l.moment = vec3(j.at("moment"), "load.moment");
+    if (j.contains("signals")) l.signals = signals_from_json(j.at("signals"));
+    if (j.contains("noise")) l.noise_covariance = noise_from_json(j.at("noise"), l.signals.size());
+    return l;
+  }
+  fail("load.mode must be one of force, dead_load, point, edge, frictional_edge, base_wrench; got " + mode.dump());
 }
 
 Case case_from_json(const json& j) {
@@ -207,6 +259,8 @@ Solution solve_case(const Case& c) {
           return solve_point(w, l.point, l.arc_length_hint, c.options, nullptr, l.edge_direction);
         else if constexpr (std::is_same_v<T, EdgeLoad>)
           return solve_edge(w, l.edge, l.arc_length_hint, c.options, nullptr, l.approach);
+        else if constexpr (std::is_same_v<T, BaseWrenchLoad>)
+          return solve_base_wrench(w, l.force, l.moment, base_wrench_options(l, c.options)).solution;
         else
           return solve_frictional_edge(w, l.edge, l.friction_coefficient, l.previous_contact, c.options, nullptr,
                                        l.approach);
@@ -240,6 +294,41 @@ json solution_to_json(const Solution& s) {
   for (const auto& p : s.shape) shape.push_back(to_json(p));
   j["shape"] = std::move(shape);
   return j;
+}
+
+BaseWrenchOptions base_wrench_options(const BaseWrenchLoad& load, const SolveOptions& options) {
+  BaseWrenchOptions o;
+  o.signals = load.signals;
+  o.noise_covariance = load.noise_covariance;
+  o.solve = options;
+  return o;
+}
+
+json base_wrench_to_json(const BaseWrenchResult& r) {
+  json j = solution_to_json(r.solution);
+  json roots = json::array();
+  for (const auto& q : r.roots)
+    roots.push_back({{"arc_length", q.arc_length}, {"force_magnitude", q.force_magnitude}, {"angle", q.angle},
+                     {"contact_point", to_json(q.contact_point)}, {"chi2", q.chi2}});
+  const auto& id = r.identifiability;
+  j["base_wrench"] = {
+      {"signals", r.signals.name()},
+      {"chi2", r.chi2},
+      {"roots", std::move(roots)},
+      {"identifiability",
+       {{"signals", id.signals},
+        {"identifiable", id.identifiable},
+        {"condition_number", std::isfinite(id.condition_number) ? json(id.condition_number) : json(nullptr)},
+        {"null_direction", to_json(id.null_direction)},
+        {"covariance", matrix_to_json(id.covariance)},
+        {"contact_point_covariance", matrix_to_json(id.contact_point_covariance_W)}}}};
+  return j;
+}
+
+json solve_case_to_json(const Case& c) {
+  if (const auto* l = std::get_if<BaseWrenchLoad>(&c.load))
+    return base_wrench_to_json(solve_base_wrench(c.whisker, l->force, l->moment, base_wrench_options(*l, c.options)));
+  return solution_to_json(solve_case(c));
 }
 
 json read_json_file(const std::string& path) {

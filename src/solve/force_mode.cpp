@@ -57,24 +57,13 @@ Solution solve_dead_load(const Whisker& w, const Placement& X, const Eigen::Vect
     return detail::levenberg_marquardt(residual, start, detail::LMBounds{}, tol, options.max_iterations);
   };
   auto lm = solve_for(target_B, u0);
-  if (!lm.converged) {  // continuation in the load magnitude from the unloaded rod
-    Eigen::Vector3d u = Eigen::Vector3d::Zero();  // the exact solution at zero load
-    double lambda = 0.0, step = 0.125;
-    int iterations = lm.iterations;
-    while (lambda < 1.0 && step > 1.0 / 4096.0) {
-      const double next = std::min(1.0, lambda + step);
-      const auto a = solve_for(next * target_B, u);
-      iterations += a.iterations;
-      if (a.converged) {
-        u = a.u;
-        lambda = next;
-        lm = a;
-        step = std::min(2.0 * step, 0.25);
-      } else {
-        step *= 0.5;
-      }
-    }
-    lm.converged = lambda >= 1.0 && lm.converged;
+  if (!lm.converged) {  // continuation in the load magnitude from the unloaded rod (u = 0: exact at zero load)
+    const auto c = detail::load_continuation(
+        [&](double lambda, const Eigen::Vector3d& u, bool) { return solve_for(lambda * target_B, u); },
+        Eigen::Vector3d::Zero(), 1.0 / 2048.0);
+    const int iterations = lm.iterations + c.iterations;
+    if (std::isfinite(c.cost)) lm = c;  // else keep the direct attempt
+    lm.converged = c.converged;
     lm.iterations = iterations;
   }
   LoadState state;

@@ -1,11 +1,17 @@
 #pragma once
-// Levenberg-Marquardt for the square 3x3 systems of every contact solve. The residual is a generic functor
-// evaluated on Dual<3>, so each trial point yields the residual and its exact Jacobian in one pass.
-// Pure Newton steps are tried first (quadratic convergence near the root); damping grows only when a step
-// fails to reduce the residual, which globalises the method for thin, compliant tips.
+// Levenberg-Marquardt over three unknowns: the square 3x3 systems of every contact solve, and (for the
+// base-wrench inverse) M x 3 least squares. The residual is a generic functor evaluated on Dual<3>, returning
+// std::array<Dual<3>, M>, so each trial point yields the residual and its exact Jacobian in one pass.
+// Pure Newton (Gauss-Newton when M != 3: minimum-norm least-squares) steps are tried first (quadratic
+// convergence near the root); damping grows only when a step fails to reduce the residual, which globalises
+// the method for thin, compliant tips. When M != 3 a fit also converges at a stationary point of the squares
+// (|J^T r| <= tolerance * max|J|), since an over-determined fit need not reach zero residual.
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <tuple>
+#include <type_traits>
 
 #include <Eigen/Dense>
 
@@ -15,6 +21,7 @@ namespace vibrissa::detail {
 
 struct LMResult {
   Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  double cost = 0.0;      ///< squared 2-norm of the scaled residual
   double residual = 0.0;  ///< max-norm of the scaled residual
   int iterations = 0;
   bool converged = false;
@@ -26,12 +33,18 @@ struct LMBounds {
   Eigen::Vector3d upper = Eigen::Vector3d::Constant(1e300);
 };
 
+/// Number of residuals of a functor (the size of the array it returns).
 template <class Residual>
-void evaluate_with_jacobian(Residual& f, const Eigen::Vector3d& u, Eigen::Vector3d& r, Eigen::Matrix3d& J) {
+inline constexpr int residual_count =
+    static_cast<int>(std::tuple_size_v<std::invoke_result_t<Residual&, const std::array<Dual<3>, 3>&>>);
+
+template <class Residual, int M>
+void evaluate_with_jacobian(Residual& f, const Eigen::Vector3d& u, Eigen::Matrix<double, M, 1>& r,
+                            Eigen::Matrix<double, M, 3>& J) {
   using D = Dual<3>;
   const std::array<D, 3> x = {D::variable(u[0], 0), D::variable(u[1], 1), D::variable(u[2], 2)};
-  const std::array<D, 3> y = f(x);
-  for (int i = 0; i < 3; ++i) {
+  const std::array<D, M> y = f(x);
+  for (int i = 0; i < M; ++i) {
     r[i] = y[static_cast<std::size_t>(i)].v;
     for (int j = 0; j < 3; ++j) J(i, j) = y[static_cast<std::size_t>(i)].d[static_cast<std::size_t>(j)];
   }
@@ -40,17 +53,33 @@ void evaluate_with_jacobian(Residual& f, const Eigen::Vector3d& u, Eigen::Vector
 template <class Residual>
 LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bounds, double tolerance,
                              int max_iterations) {
+  constexpr int M = residual_count<std::remove_reference_t<Residual>>;
+  using Vec = Eigen::Matrix<double, M, 1>;
+  using Jac = Eigen::Matrix<double, M, 3>;
+  // Converged: the residual is within tolerance, or (least squares) the gradient of the squares vanishes
+  // except for components held by an active bound.
+  auto done = [tolerance, &bounds](const Eigen::Vector3d& u_, const Vec& r_, const Jac& J_) {
+    if (r_.cwiseAbs().maxCoeff() <= tolerance) return true;
+    if constexpr (M == 3) {
+      return false;
+    } else {
+      Eigen::Vector3d g_ = J_.transpose() * r_;
+      for (int i = 0; i < 3; ++i)
+        if ((u_[i] <= bounds.lower[i] && g_[i] > 0.0) || (u_[i] >= bounds.upper[i] && g_[i] < 0.0)) g_[i] = 0.0;
+      return g_.cwiseAbs().maxCoeff() <= tolerance * std::max(J_.cwiseAbs().maxCoeff(), 1e-300);
+    }
+  };
   LMResult out;
   u = u.cwiseMax(bounds.lower).cwiseMin(bounds.upper);
-  Eigen::Vector3d r;
-  Eigen::Matrix3d J;
+  Vec r;
+  Jac J;
   evaluate_with_jacobian(f, u, r, J);
   if (!r.allFinite()) return out;
   double cost = r.squaredNorm();
   double lambda = 0.0;
   int it = 0;
   for (; it < max_iterations; ++it) {
-    if (r.cwiseAbs().maxCoeff() <= tolerance) {
+    if (done(u, r, J)) {
       out.converged = true;
       break;
     }
@@ -61,19 +90,20 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
     for (int attempt = 0; attempt < 30 && !accepted; ++attempt) {
       Eigen::Vector3d step;
       if (lambda == 0.0) {
-        step = -J.partialPivLu().solve(r);
+        if constexpr (M == 3) step = -J.partialPivLu().solve(r);
+        else step = -Eigen::MatrixXd(J).completeOrthogonalDecomposition().solve(Eigen::VectorXd(r));
       } else {
-        Eigen::Matrix3d M = A;
-        M.diagonal() += lambda * (A.diagonal().cwiseMax(1e-12 * scale));
-        step = -M.ldlt().solve(g);
+        Eigen::Matrix3d A_damped = A;
+        A_damped.diagonal() += lambda * (A.diagonal().cwiseMax(1e-12 * scale));
+        step = -A_damped.ldlt().solve(g);
       }
       if (!step.allFinite()) {
         lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
         continue;
       }
       const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
-      Eigen::Vector3d r_new;
-      Eigen::Matrix3d J_new;
+      Vec r_new;
+      Jac J_new;
       evaluate_with_jacobian(f, u_new, r_new, J_new);
       const double cost_new = r_new.squaredNorm();
       if (r_new.allFinite() && cost_new < cost) {
@@ -93,10 +123,40 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
   }
   out.u = u;
   out.residual = r.cwiseAbs().maxCoeff();
-  out.converged = out.converged || out.residual <= tolerance;
+  out.cost = cost;
+  out.converged = out.converged || done(u, r, J);
   out.iterations = it;
   out.at_upper_bound = (u.array() >= bounds.upper.array() - 1e-12).any();
   return out;
+}
+
+/// Continuation in a load factor lambda from 0 to 1: `solve_at(lambda, u, first)` solves the problem at
+/// lambda from u (`first`: no converged step yet, u is the given start). The step doubles after a success
+/// (up to 1/4) and halves after a failure, giving up below `min_step`. Returns the last converged result
+/// (cost +inf if none) with `converged` only if lambda reached 1, and the iterations of every attempt.
+template <class SolveAt>
+LMResult load_continuation(SolveAt&& solve_at, Eigen::Vector3d u, double min_step) {
+  LMResult last;
+  last.u = u;
+  last.cost = std::numeric_limits<double>::infinity();
+  int iterations = 0;
+  double lambda = 0.0, step = 0.125;
+  while (lambda < 1.0 && step >= min_step) {
+    const double next = std::min(1.0, lambda + step);
+    const LMResult a = solve_at(next, u, lambda == 0.0);
+    iterations += a.iterations;
+    if (a.converged) {
+      u = a.u;
+      lambda = next;
+      last = a;
+      step = std::min(2.0 * step, 0.25);
+    } else {
+      step *= 0.5;
+    }
+  }
+  last.converged = last.converged && lambda >= 1.0;
+  last.iterations = iterations;
+  return last;
 }
 
 }  // namespace vibrissa::detail

@@ -10,6 +10,7 @@
 
 #include "vibrissa/core/whisker.hpp"
 #include "vibrissa/io/json_file.hpp"
+#include "vibrissa/solve/base_wrench.hpp"
 #include "vibrissa/solve/options.hpp"
 #include "vibrissa/solve/solution.hpp"
 
@@ -38,7 +39,14 @@ struct FrictionalEdgeLoad {
   Eigen::Vector3d previous_contact = Eigen::Vector3d::Zero();
   std::optional<Eigen::Vector3d> approach;
 };
-using Load = std::variant<ForceLoad, DeadLoad, PointLoad, EdgeLoad, FrictionalEdgeLoad>;
+/// The inverse (docs/inverse.md): base force and moment (world, about the base) -> contact.
+struct BaseWrenchLoad {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  SignalSet signals = SignalSet::all();
+  Eigen::MatrixXd noise_covariance;  ///< empty: the default relative noise
+};
+using Load = std::variant<ForceLoad, DeadLoad, PointLoad, EdgeLoad, FrictionalEdgeLoad, BaseWrenchLoad>;
 
 struct Case {
   Whisker whisker;
@@ -55,6 +63,11 @@ Case case_from_json(const nlohmann::json& j);
 Solution solve_case(const Case& c);
 
 nlohmann::json solution_to_json(const Solution& s);
+/// The result of `vibrissa solve`: solution_to_json, plus a "base_wrench" object for that mode.
+nlohmann::json solve_case_to_json(const Case& c);
+/// The inverse's result: solution_to_json of the returned fit plus "base_wrench" (roots, identifiability).
+nlohmann::json base_wrench_to_json(const BaseWrenchResult& r);
+BaseWrenchOptions base_wrench_options(const BaseWrenchLoad& load, const SolveOptions& options);
 nlohmann::json to_json(const Eigen::Vector3d& v);
 
 /// Reads and parses a JSON file; errors name the file.

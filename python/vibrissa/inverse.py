@@ -1,0 +1,57 @@
+"""The base-wrench inverse over time series (docs/inverse.md): where and how hard the whisker was touched,
+frame by frame, from the force and moment at its base."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _vibrissa
+
+__all__ = ["BaseWrenchBatch", "solve_base_wrench_batch"]
+
+
+class BaseWrenchBatch:
+    """Stacked results of :func:`solve_base_wrench_batch`, shape (F, ...) or (S, F, ...).
+
+    * ``status`` int32 codes of :class:`Status` (``STATUS_NAMES[code]``), ``converged`` bool
+    * ``arc_length`` [m], ``force_magnitude`` [N], ``angle`` [rad], ``chi2``
+    * ``contact_point`` (..., 3) world [m]
+    * ``identifiable`` bool, ``condition_number``, ``covariance`` (..., 3, 3) of (s, f, zeta),
+      ``contact_point_covariance`` (..., 3, 3) [m^2]
+    * ``results``: the :class:`BaseWrenchResult` objects, nested like the frames (roots and all)
+    """
+
+    def __init__(self, results, series_axis: bool):
+        self.results = results if series_axis else results[0]
+        rows = [r for series in results for r in series]
+        shape = (len(results), len(results[0])) if series_axis else (len(results[0]),)
+
+        def stack(get, tail=()):
+            return np.array([get(r) for r in rows], dtype=float).reshape(shape + tail)
+
+        self.status = np.array([int(r.solution.status) for r in rows], dtype=np.int32).reshape(shape)
+        self.converged = self.status == int(_vibrissa.Status.converged)
+        self.arc_length = stack(lambda r: r.solution.arc_length)
+        self.force_magnitude = stack(lambda r: r.solution.force_magnitude)
+        self.angle = stack(lambda r: r.solution.angle)
+        self.chi2 = stack(lambda r: r.chi2)
+        self.contact_point = stack(lambda r: r.solution.contact_point, (3,))
+        self.identifiable = np.array([r.identifiability.identifiable for r in rows], dtype=bool).reshape(shape)
+        self.condition_number = stack(lambda r: r.identifiability.condition_number)
+        self.covariance = stack(lambda r: r.identifiability.covariance, (3, 3))
+        self.contact_point_covariance = stack(lambda r: r.identifiability.contact_point_covariance, (3, 3))
+
+    def __repr__(self) -> str:
+        return f"BaseWrenchBatch(shape={self.status.shape}, converged={int(self.converged.sum())})"
+
+
+def solve_base_wrench_batch(whisker, force_W, moment_W, *, pose=None, signals="all", noise=None, starts=16,
+                            options=None, threads=None, progress=None) -> BaseWrenchBatch:
+    """:func:`solve_base_wrench` over time series: ``force_W`` and ``moment_W`` of shape (F, 3) for one series
+    or (S, F, 3) for S series (world frame, moment about the base). Frame k of a series is warm-started from
+    frame k-1's fit (a full scan when that fails); series run in parallel with the GIL released. Ctrl-C
+    interrupts; ``progress(done, total)`` counts frames."""
+    series_axis = np.ndim(force_W) == 3
+    results = _vibrissa._solve_base_wrench_series(whisker, force_W, moment_W, pose, signals, noise, starts, options,
+                                                  threads, progress)
+    return BaseWrenchBatch(results, series_axis)
