@@ -433,6 +433,12 @@ BaseWrenchResult solve_base_wrench(const Whisker& w, const Placement& X, const E
   out.solution.iterations = iterations;
   if (kept.size() > 1) out.solution.other_root_arc_length = out.roots[1].arc_length;
   out.identifiability = identify(p, X, best.u);
+  if (!explains()) {  // an optimum, but the signals differ from it by more than their noise: not this contact
+    detail::set_status(out.solution, Status::not_converged,
+                       "base wrench: the best fit leaves chi2 above what the signals' noise explains (a local "
+                       "optimum): no contact found that explains the signals");
+    return out;
+  }
   detail::set_status(out.solution, Status::converged,
                      out.identifiability.identifiable
                          ? "base wrench: least-squares fit of the base signals (residual = sqrt(chi2))"
