@@ -199,7 +199,7 @@ void bind_solve(py::module_& m) {
       py::arg("whisker"), py::arg("force"), py::arg("arc_length"), py::arg("angle") = 0.0, py::kw_only(),
       py::arg("options") = py::none(), py::arg("pose") = py::none(),
       "Force mode: a follower force of magnitude `force` [N] normal to the whisker at `arc_length` [m], at "
-      "`angle` [rad] about the whisker axis (0 = +y of the loaded link, toward the concave side; pi/2 = +z). "
+      "`angle` [rad] about the whisker axis (second_order: 0 = +y of the loaded link, toward the concave side, pi/2 = +z; paper: Elastica3D's zeta, docs/conventions.md). "
       "Explicit, O(N).");
   m.def(
       "solve_dead_load",

@@ -6,7 +6,8 @@
 //     omega_j = w_j · (M_x / GJ_j, M_y / EI_j, M_z / EI_j)                      (eqs. (1), (3))
 // and everything distal turns with it. Because the load follows its link, the walk is explicit and exact
 // for the discrete chain: O(N), no iteration, no allocation. It is templated on the scalar so that the
-// same code evaluated on Dual<3> gives exact Jacobians for the solvers.
+// same code evaluated on Dual<3> gives exact Jacobians for the solvers. This walk is the second-order
+// scheme's; the paper scheme's (Elastica3D's re-meshed chain) is deflect_published() in published_chain.hpp.
 #include <cmath>
 #include <vector>
 
