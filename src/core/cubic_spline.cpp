@@ -2,8 +2,23 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace vibrissa {
+
+std::vector<double> solve_tridiagonal(const std::vector<double>& lower, std::vector<double> diag,
+                                      const std::vector<double>& upper, std::vector<double> rhs) {
+  const std::size_t n = diag.size();
+  for (std::size_t i = 1; i < n; ++i) {
+    const double f = lower[i] / diag[i - 1];
+    diag[i] -= f * upper[i - 1];
+    rhs[i] -= f * rhs[i - 1];
+  }
+  std::vector<double> x(n);
+  x[n - 1] = rhs[n - 1] / diag[n - 1];
+  for (std::size_t i = n - 1; i-- > 0;) x[i] = (rhs[i] - upper[i] * x[i + 1]) / diag[i];
+  return x;
+}
 
 CubicSpline CubicSpline::not_a_knot(const std::vector<double>& x, const std::vector<double>& y) {
   const std::size_t n = x.size();
@@ -42,13 +57,7 @@ CubicSpline CubicSpline::not_a_knot(const std::vector<double>& x, const std::vec
     lo[n - 1] = xn;
     di[n - 1] = h[n - 3];
     r[n - 1] = (h[n - 2] * h[n - 2] * slope[n - 3] + (2.0 * xn + h[n - 2]) * h[n - 3] * slope[n - 2]) / xn;
-    for (std::size_t i = 1; i < n; ++i) {  // Thomas algorithm
-      const double f = lo[i] / di[i - 1];
-      di[i] -= f * up[i - 1];
-      r[i] -= f * r[i - 1];
-    }
-    m[n - 1] = r[n - 1] / di[n - 1];
-    for (std::size_t i = n - 1; i-- > 0;) m[i] = (r[i] - up[i] * m[i + 1]) / di[i];
+    m = solve_tridiagonal(lo, std::move(di), up, std::move(r));
   }
   CubicSpline s;
   s.x_ = x;

@@ -10,6 +10,11 @@
 
 namespace vibrissa {
 
+/// Solves the tridiagonal system lower[i] x[i-1] + diag[i] x[i] + upper[i] x[i+1] = rhs[i] (Thomas
+/// algorithm, no pivoting: for the diagonally dominant systems of spline fitting). Arguments are consumed.
+std::vector<double> solve_tridiagonal(const std::vector<double>& lower, std::vector<double> diag,
+                                      const std::vector<double>& upper, std::vector<double> rhs);
+
 class CubicSpline {
  public:
   CubicSpline() = default;
