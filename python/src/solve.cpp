@@ -175,6 +175,21 @@ void bind_solve(py::module_& m) {
           "Deflected nodes, world [m], shape (N+1, 3), base first; (0, 3) when options.compute_shape is False.")
       .def_readonly("other_root_arc_length", &Solution::other_root_arc_length,
                     "Arc length [m] of another root, when options.find_other_roots found one, else None.")
+      .def_property_readonly(
+          "roots",
+          [](const Solution& s) {
+            py::list out;
+            for (const Root& r : s.roots) {
+              py::dict d;
+              d["arc_length"] = r.arc_length;
+              d["force"] = r.force_magnitude;
+              d["residual"] = r.residual;
+              out.append(d);
+            }
+            return out;
+          },
+          "Every distinct root found (point mode with a hint or find_other_roots): dicts with arc_length [m], "
+          "force [N], residual [m], by arc length.")
       .def_readonly("state", &Solution::state, "The solved unknowns, for warm starts.")
       .def("to_dict", &solution_to_dict,
            "The result as the JSON contract of `vibrissa solve` names it (vectors and shape as NumPy arrays).")
@@ -199,7 +214,7 @@ void bind_solve(py::module_& m) {
       py::arg("whisker"), py::arg("force"), py::arg("arc_length"), py::arg("angle") = 0.0, py::kw_only(),
       py::arg("options") = py::none(), py::arg("pose") = py::none(),
       "Force mode: a follower force of magnitude `force` [N] normal to the whisker at `arc_length` [m], at "
-      "`angle` [rad] about the whisker axis (0 = +y of the loaded link, toward the concave side; pi/2 = +z). "
+      "`angle` [rad] about the whisker axis (second_order: 0 = +y of the loaded link, toward the concave side, pi/2 = +z; paper: Elastica3D's zeta, docs/conventions.md). "
       "Explicit, O(N).");
   m.def(
       "solve_dead_load",

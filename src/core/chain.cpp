@@ -2,9 +2,9 @@
 
 namespace vibrissa {
 
-Eigen::Matrix3d joint_rotation_matrix(Scheme scheme, const Eigen::Vector3d& omega) {
+Eigen::Matrix3d joint_rotation_matrix(const Eigen::Vector3d& omega) {
   V3<double> cols[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  apply_joint_rotation(scheme, V3<double>(omega), cols, 3);
+  apply_joint_rotation(V3<double>(omega), cols, 3);
   Eigen::Matrix3d R;
   for (int i = 0; i < 3; ++i) R.col(i) = to_eigen(cols[i]);
   return R;
@@ -15,11 +15,10 @@ void deflected_nodes_B(const Whisker& w, const Eigen::Vector3d* omega, std::vect
   nodes_B.resize(static_cast<std::size_t>(N) + 1);
   nodes_B[0].setZero();
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  const Scheme scheme = w.properties().scheme;
   for (int i = 0; i < N; ++i) {
     const std::size_t u = static_cast<std::size_t>(i);
     R = R * w.rest_joint_rotations()[u];
-    if (!omega[i].isZero(0.0)) R = R * joint_rotation_matrix(scheme, omega[i]);
+    if (!omega[i].isZero(0.0)) R = R * joint_rotation_matrix(omega[i]);
     nodes_B[u + 1] = nodes_B[u] + w.link_lengths()[u] * R.col(0);
   }
 }

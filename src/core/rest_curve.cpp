@@ -1,5 +1,7 @@
 #include "vibrissa/core/rest_curve.hpp"
 
+#include "vibrissa/core/cubic_spline.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -26,7 +28,7 @@ double speed_integral(const std::function<Eigen::Vector3d(double)>& dc, double a
 std::vector<double> clamped_spline_moments(const std::vector<double>& t, const std::vector<double>& y, double d0,
                                            double dn) {
   const std::size_t n = t.size();
-  std::vector<double> a(n, 0.0), b(n, 0.0), c(n, 0.0), d(n, 0.0), m(n, 0.0);
+  std::vector<double> a(n, 0.0), b(n, 0.0), c(n, 0.0), d(n, 0.0);
   const double h0 = t[1] - t[0], hn = t[n - 1] - t[n - 2];
   b[0] = 2.0 * h0;
   c[0] = h0;
@@ -41,14 +43,7 @@ std::vector<double> clamped_spline_moments(const std::vector<double>& t, const s
   a[n - 1] = hn;
   b[n - 1] = 2.0 * hn;
   d[n - 1] = 6.0 * (dn - (y[n - 1] - y[n - 2]) / hn);
-  for (std::size_t i = 1; i < n; ++i) {  // Thomas algorithm
-    const double f = a[i] / b[i - 1];
-    b[i] -= f * c[i - 1];
-    d[i] -= f * d[i - 1];
-  }
-  m[n - 1] = d[n - 1] / b[n - 1];
-  for (std::size_t i = n - 1; i-- > 0;) m[i] = (d[i] - c[i] * m[i + 1]) / b[i];
-  return m;
+  return solve_tridiagonal(a, std::move(b), c, std::move(d));
 }
 
 // Derivative at t[0] of the polynomial through the first (up to 4) samples: O(h^3) end slopes, so the

@@ -72,11 +72,16 @@ Whisker Whisker::from_points(const std::vector<Eigen::Vector3d>& points, const W
     require_finite(points[i], ("whisker.points[" + std::to_string(i) + "]").c_str());
   Eigen::Vector3d tangent0;
   std::vector<Eigen::Vector3d> nodes = resample_points(points, props.links, &tangent0);
+  WhiskerProperties used = props;
+  if (props.scheme == Scheme::paper) {  // Elastica3D takes the nodes as given
+    nodes = points;
+    used.links = static_cast<int>(points.size()) - 1;
+  }
   const Eigen::Matrix3d R = whisker_frame(nodes, tangent0);  // columns: B axes in the input frame
   const Eigen::Vector3d base = nodes.front();
   for (auto& p : nodes) p = R.transpose() * (p - base);
   Whisker w;
-  w.build(std::move(nodes), props);
+  w.build(std::move(nodes), used);
   w.placement_ = pose ? Placement(*pose) : Placement(R, base);
   return w;
 }
@@ -168,17 +173,23 @@ void Whisker::build(std::vector<Eigen::Vector3d> nodes_B, const WhiskerPropertie
   // Joint weights (docs/conventions.md, "Discretisation").
   weight_.resize(N);
   weight_load_base_.resize(N);
+  for (std::size_t j = 0; j < N; ++j) {
+    const double left = j == 0 ? 0.0 : link_length_[j - 1];
+    weight_[j] = 0.5 * (left + link_length_[j]);
+    weight_load_base_[j] = 0.5 * left;
+  }
+  weight_load_slope_ = 0.5;
   if (props.scheme == Scheme::paper) {
-    for (std::size_t j = 0; j < N; ++j) weight_[j] = weight_load_base_[j] = link_length_[j];
-    weight_load_slope_ = 0.0;
-    if (props.base == BaseJoint::rigid) weight_[0] = weight_load_base_[0] = 0.0;
-  } else {
-    for (std::size_t j = 0; j < N; ++j) {
-      const double left = j == 0 ? 0.0 : link_length_[j - 1];
-      weight_[j] = 0.5 * (left + link_length_[j]);
-      weight_load_base_[j] = 0.5 * left;
+    for (int d = 0; d < 3; ++d) {
+      std::vector<double> c(N + 1);
+      for (std::size_t i = 0; i <= N; ++i) c[i] = nodes_B_[i][d];
+      remesh_.node_B[static_cast<std::size_t>(d)] = CubicSpline::not_a_knot(arc_, c);
     }
-    weight_load_slope_ = 0.5;
+    const std::vector<double> s_tail(arc_.begin() + 1, arc_.end());
+    std::vector<double> E(youngs_.begin() + 1, youngs_.end()), I(N);
+    for (std::size_t i = 0; i < N; ++i) I[i] = std::numbers::pi / 4.0 * std::pow(radius_[i + 1], 4);
+    remesh_.youngs = CubicSpline::not_a_knot(s_tail, E);
+    remesh_.inertia = CubicSpline::not_a_knot(s_tail, I);
   }
   base_extra_compliance_ = props.base_stiffness ? 1.0 / *props.base_stiffness : 0.0;
 }

@@ -288,6 +288,10 @@ json solution_to_json(const Solution& s) {
   j["normal_force"] = s.normal_force ? json(*s.normal_force) : json(nullptr);
   j["edge_force"] = s.edge_force ? json(*s.edge_force) : json(nullptr);
   j["other_root_arc_length"] = s.other_root_arc_length ? json(*s.other_root_arc_length) : json(nullptr);
+  json roots = json::array();
+  for (const Root& r : s.roots)
+    roots.push_back({{"arc_length", r.arc_length}, {"force", r.force_magnitude}, {"residual", r.residual}});
+  j["roots"] = std::move(roots);
   j["residual"] = s.residual;
   j["iterations"] = s.iterations;
   json shape = json::array();

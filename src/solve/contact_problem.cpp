@@ -3,6 +3,7 @@
 #include "vibrissa/solve/solvers.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 namespace vibrissa::detail {
@@ -41,7 +42,37 @@ Workspace& workspace() {
   thread_local Workspace ws;
   return ws;
 }
+
+/// Deflected nodes in B into ws.nodes_B.
+void shape_B(const Whisker& w, const LoadState& state, Workspace& ws) {
+  const V3<double> F_L(state.force_x, state.force_y, state.force_z);
+  if (w.properties().scheme == Scheme::paper) {
+    published_nodes_B(w, F_L, V3<double>(0, 0, 0), state.arc_length, ws.nodes_B);
+    return;
+  }
+  ws.omega.resize(static_cast<std::size_t>(w.links()));
+  deflect<double>(w, F_L, V3<double>(0, 0, 0), state.arc_length, ws.omega.data());
+  deflected_nodes_B(w, ws.omega.data(), ws.nodes_B);
+}
 }  // namespace
+
+double force_angle(const Whisker& w, const Placement& X, const LoadState& state) {
+  if (w.properties().scheme != Scheme::paper) return std::atan2(state.force_z, state.force_y);
+  const double zeta = std::atan2(-state.force_z, -state.force_y) - published_angle_offset(w, X.R_WB, state.arc_length);
+  return std::remainder(zeta, 2.0 * std::numbers::pi);
+}
+
+void set_force_angle(const Whisker& w, const Placement& X, double force, double angle, LoadState& state) {
+  state.force_x = 0.0;
+  if (w.properties().scheme != Scheme::paper) {
+    state.force_y = force * std::cos(angle);
+    state.force_z = force * std::sin(angle);
+    return;
+  }
+  const double a = angle + published_angle_offset(w, X.R_WB, state.arc_length);
+  state.force_y = -force * std::cos(a);
+  state.force_z = -force * std::sin(a);
+}
 
 void fill_solution(const Whisker& w, const Placement& X, const LoadState& state, const SolveOptions& options,
                    const std::optional<Eigen::Vector3d>& edge_direction_W, Solution& out) {
@@ -55,7 +86,7 @@ void fill_solution(const Whisker& w, const Placement& X, const LoadState& state,
   out.state = state;
   out.arc_length = state.arc_length;
   out.force_magnitude = F_B.norm();
-  out.angle = std::atan2(state.force_z, state.force_y);
+  out.angle = force_angle(w, X, state);
   out.contact_point = X.to_world(p_B);
   out.force = X.R_WB * F_B;
   out.moment = X.R_WB * M_B;
@@ -73,7 +104,7 @@ void fill_solution(const Whisker& w, const Placement& X, const LoadState& state,
   }
   out.shape.clear();
   if (options.compute_shape) {
-    deflected_nodes_B(w, omega.data(), ws.nodes_B);
+    shape_B(w, state, ws);
     out.shape.reserve(ws.nodes_B.size());
     for (const auto& p : ws.nodes_B) out.shape.push_back(X.to_world(p));
   }
@@ -84,10 +115,7 @@ void fill_solution(const Whisker& w, const Placement& X, const LoadState& state,
 namespace vibrissa {
 void deflected_shape(const Whisker& w, const Placement& X, const LoadState& state, std::vector<Eigen::Vector3d>& nodes_W) {
   detail::Workspace& ws = detail::workspace();
-  ws.omega.resize(static_cast<std::size_t>(w.links()));
-  const V3<double> F_L(state.force_x, state.force_y, state.force_z);
-  deflect<double>(w, F_L, V3<double>(0, 0, 0), state.arc_length, ws.omega.data());
-  deflected_nodes_B(w, ws.omega.data(), ws.nodes_B);
+  detail::shape_B(w, state, ws);
   nodes_W.resize(ws.nodes_B.size());
   for (std::size_t i = 0; i < ws.nodes_B.size(); ++i) nodes_W[i] = X.to_world(ws.nodes_B[i]);
 }

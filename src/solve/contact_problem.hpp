@@ -35,6 +35,13 @@ ContactKinematics<S> contact_at(const Whisker& w, const Scales& sc, const std::a
   return deflect<S>(w, force, V3<S>(S(0.0), S(0.0), S(0.0)), sc.length * u[2]);
 }
 
+/// The force-mode angle of a load (docs/conventions.md, "Loads and signs"): second-order scheme,
+/// F = f (0, cos a, sin a) in the loaded link's frame; paper scheme, Elastica3D's ζ.
+double force_angle(const Whisker& w, const Placement& X_WB, const LoadState& state);
+/// Sets state.force_{x,y,z} for a normal force of magnitude `force` and force-mode angle `angle` at
+/// state.arc_length (the inverse of force_angle).
+void set_force_angle(const Whisker& w, const Placement& X_WB, double force, double angle, LoadState& state);
+
 /// Orthonormal pair spanning the plane normal to unit vector d.
 void normal_basis(const Eigen::Vector3d& d, Eigen::Vector3d& e1, Eigen::Vector3d& e2);
 

@@ -24,9 +24,8 @@ Solution solve_force(const Whisker& w, const Placement& X, double force, double 
   require_finite(angle, "load.angle");
   check_arc_length(w, arc_length);
   LoadState state;
-  state.force_y = force * std::cos(angle);
-  state.force_z = force * std::sin(angle);
   state.arc_length = arc_length;
+  detail::set_force_angle(w, X, force, angle, state);
   Solution out;
   detail::fill_solution(w, X, state, options, std::nullopt, out);
   detail::set_status(out, Status::converged, "explicit force-mode evaluation");

@@ -1,7 +1,11 @@
 // Contact-point mode (spec §2.1, "contact-point simulations"): find (F_y, F_z, s) such that the deflected
 // whisker passes through the tracked point with the force normal to it there. Friction along the object is
 // implicit: the tracked point fixes where the contact is.
+#include <algorithm>
 #include <cmath>
+#include <vector>
+
+#include <Eigen/QR>
 
 #include "contact_problem.hpp"
 #include "vibrissa/solve/solvers.hpp"
@@ -34,6 +38,45 @@ PointAttempt attempt_point(const Whisker& w, const detail::Scales& sc, const Eig
   return a;
 }
 
+/// Unknowns at arc length s (scaled) with the force that brings the contact at s closest to the target:
+/// damped Gauss-Newton on the two force components with s held fixed.
+Eigen::Vector3d fixed_arc_length_start(const Whisker& w, const detail::Scales& sc, const Eigen::Vector3d& target_B,
+                                       double s) {
+  using D = Dual<3>;
+  auto evaluate = [&](const Eigen::Vector2d& f, Eigen::Matrix<double, 3, 2>& J, Eigen::Vector3d& gap) {
+    const std::array<D, 3> u{D::variable(f[0], 0), D::variable(f[1], 1), D(s)};
+    const auto c = detail::contact_at<D>(w, sc, u);
+    const D* p[3] = {&c.p_contact_B.x, &c.p_contact_B.y, &c.p_contact_B.z};
+    for (int i = 0; i < 3; ++i) {
+      gap[i] = (target_B[i] - p[i]->v) / sc.length;
+      J(i, 0) = p[i]->d[0] / sc.length;
+      J(i, 1) = p[i]->d[1] / sc.length;
+    }
+  };
+  Eigen::Vector2d f = Eigen::Vector2d::Zero();
+  Eigen::Matrix<double, 3, 2> J;
+  Eigen::Vector3d gap;
+  evaluate(f, J, gap);
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::Vector2d step = J.colPivHouseholderQr().solve(gap);
+    double t = 1.0;
+    Eigen::Matrix<double, 3, 2> J_try;
+    Eigen::Vector3d gap_try;
+    bool better = false;
+    for (int halvings = 0; halvings < 20 && !better; ++halvings, t *= 0.5) {
+      evaluate(f + t * step, J_try, gap_try);
+      better = gap_try.norm() < gap.norm();
+      if (better) f += t * step;
+    }
+    if (!better) break;
+    const bool small = (gap.norm() - gap_try.norm()) < 1e-12 * (1.0 + gap.norm());
+    J = J_try;
+    gap = gap_try;
+    if (small) break;
+  }
+  return {f[0], f[1], s};
+}
+
 }  // namespace
 
 Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d& point_W, std::optional<double> hint,
@@ -60,13 +103,34 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
     u0 = Eigen::Vector3d(0.0, 0.0, s0 / sc.length);
   }
   PointAttempt a = attempt_point(w, sc, target_B, u0, options);
-  if (hint && !warm) {  // the root nearest the hint: also start a little to either side, keep the nearest
-    const double h = *hint / sc.length;
-    for (double s_try : {h - 0.1, h + 0.1, 0.25, 0.5, 0.75, 1.0}) {  // basins are not intervals: probe widely
-      const PointAttempt b = attempt_point(w, sc, target_B, Eigen::Vector3d(0.0, 0.0, std::clamp(s_try, 1e-6, 1.0)), options);
-      if (b.status == Status::converged &&
-          (a.status != Status::converged || std::abs(b.lm.u[2] - h) < std::abs(a.lm.u[2] - h) - 1e-9))
-        a = b;
+  std::vector<Root> roots;
+  if ((hint && !warm) || options.find_other_roots) {
+    // Scan: start near the hint and all along the whisker, each start with the force that the linearised
+    // model needs there; keep every distinct root, and with a hint the one nearest it.
+    const double h = hint ? *hint / sc.length : a.lm.u[2];
+    std::vector<PointAttempt> found;
+    auto keep = [&](const PointAttempt& b) {
+      if (b.status != Status::converged) return;
+      for (const auto& f : found)
+        if (std::abs(f.lm.u[2] - b.lm.u[2]) < 1e-7 && (f.lm.u.head<2>() - b.lm.u.head<2>()).norm() < 1e-7 * (1.0 + b.lm.u.head<2>().norm()))
+          return;
+      found.push_back(b);
+    };
+    keep(a);
+    std::vector<double> starts = {h};
+    for (double d : {0.01, 0.02, 0.05, 0.1, 0.2}) starts.insert(starts.end(), {h - d, h + d});
+    for (int i = 1; i <= 10; ++i) starts.push_back(0.1 * i);
+    for (double s_try : starts) {
+      if (s_try <= 0.0 || s_try > 1.0) continue;
+      keep(attempt_point(w, sc, target_B, fixed_arc_length_start(w, sc, target_B, s_try), options));
+    }
+    if (hint && !warm)
+      for (const auto& f : found)
+        if (a.status != Status::converged || std::abs(f.lm.u[2] - h) < std::abs(a.lm.u[2] - h) - 1e-12) a = f;
+    std::sort(found.begin(), found.end(), [](const PointAttempt& x, const PointAttempt& y) { return x.lm.u[2] < y.lm.u[2]; });
+    for (const auto& f : found) {
+      const LoadState st = detail::state_from_unknowns(f.lm.u, sc);
+      roots.push_back({st.arc_length, std::hypot(st.force_x, std::hypot(st.force_y, st.force_z)), f.lm.residual * sc.length});
     }
   }
   if (a.status == Status::not_converged && warm) {  // a bad warm start: fall back to the cold rule
@@ -87,17 +151,13 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
       break;
     default: detail::set_status(out, a.status, "no equilibrium through the point within the iteration limit"); break;
   }
-  if (a.status == Status::converged && options.find_other_roots) {
-    const double s_star = a.lm.u[2];
-    for (double s_try : {0.25, 0.5, 0.75, 1.0}) {  // probes along the whisker, away from the root found
-      if (std::abs(s_try - s_star) < 0.05) continue;
-      const PointAttempt other = attempt_point(w, sc, target_B, Eigen::Vector3d(0.0, 0.0, s_try), options);
-      if (other.status == Status::converged && std::abs(other.lm.u[2] - s_star) > 0.01) {
-        out.other_root_arc_length = other.lm.u[2] * sc.length;
-        break;
-      }
-    }
-  }
+  out.roots = std::move(roots);
+  if (a.status == Status::converged && options.find_other_roots)
+    for (const Root& r : out.roots)  // the nearest distinct root
+      if (std::abs(r.arc_length - out.arc_length) > 0.01 * sc.length &&
+          (!out.other_root_arc_length ||
+           std::abs(r.arc_length - out.arc_length) < std::abs(*out.other_root_arc_length - out.arc_length)))
+        out.other_root_arc_length = r.arc_length;
   return out;
 }
 

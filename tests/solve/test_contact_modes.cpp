@@ -167,23 +167,6 @@ TEST(Invariance, RigidMotionOfTheSceneRotatesEveryOutput) {
   EXPECT_NEAR(b.whisker_frame.MD, a.whisker_frame.MD, 1e-6);
 }
 
-TEST(Equilibrium, BaseMomentMatchesTheBaseSpring) {
-  // The moment about the base (r x F) must be what the first joint's spring carries: omega_0 / (w_0 / EI_0).
-  WhiskerProperties p;
-  p.scheme = Scheme::paper;  // full-link spring at the base (elastic)
-  const Whisker w = Whisker::from_parabola(0.04, 12.0, p);
-  const Solution s = solve_force(w, 2e-4, 0.025, 0.6);
-  std::vector<Eigen::Vector3d> omega(100);
-  const double Fy = s.state.force_y, Fz = s.state.force_z;
-  deflect<double>(w, V3<double>(0, Fy, Fz), V3<double>(0, 0, 0), 0.025, omega.data());
-  // Joint 0's moment in link 0's frame -> B via the rest and deformation rotations.
-  const double wgt = w.joint_weight()[0];
-  const Eigen::Vector3d M_link(omega[0].x() / (wgt * w.torsion_compliance()[0]), omega[0].y() / (wgt * w.bending_compliance()[0]),
-                               omega[0].z() / (wgt * w.bending_compliance()[0]));
-  const Eigen::Matrix3d R0 = w.rest_joint_rotations()[0] * joint_rotation_matrix(Scheme::paper, omega[0]);
-  EXPECT_LT((R0 * M_link - s.whisker_frame.moment).norm(), 1e-9 * s.whisker_frame.moment.norm());
-}
-
 TEST(Jacobian, DualNumbersMatchFiniteDifferences) {
   const Whisker w = rat_whisker(100, tilted_pose());
   const double Fy = 1.2e-4, Fz = -0.7e-4, s = 0.0231;

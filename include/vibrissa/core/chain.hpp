@@ -6,74 +6,28 @@
 //     omega_j = w_j · (M_x / GJ_j, M_y / EI_j, M_z / EI_j)                      (eqs. (1), (3))
 // and everything distal turns with it. Because the load follows its link, the walk is explicit and exact
 // for the discrete chain: O(N), no iteration, no allocation. It is templated on the scalar so that the
-// same code evaluated on Dual<3> gives exact Jacobians for the solvers.
+// same code evaluated on Dual<3> gives exact Jacobians for the solvers. This walk is the second-order
+// scheme's; the paper scheme's (Elastica3D's re-meshed chain) is deflect_published() in published_chain.hpp.
 #include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "vibrissa/core/contact_kinematics.hpp"
 #include "vibrissa/core/dual.hpp"
+#include "vibrissa/core/published_chain.hpp"
+#include "vibrissa/core/rodrigues.hpp"
 #include "vibrissa/core/small_vector.hpp"
 #include "vibrissa/core/whisker.hpp"
 
 namespace vibrissa {
 
-/// Contact kinematics of the deflected chain, in the whisker frame B.
+/// Applies the rotation exp(omega) of a second-order joint to the vectors v[0..count).
 template <class S>
-struct ContactKinematics {
-  V3<S> p_contact_B;  ///< contact point relative to the base [m]
-  V3<S> force_B;      ///< force on the whisker at the contact [N]
-  V3<S> couple_B;     ///< couple on the whisker at the contact [N·m]
-  V3<S> tangent_B;    ///< unit tangent of the loaded link
-};
-
-namespace detail {
-
-/// Rotate v by the rotation vector w (exact exponential map), given precomputed coefficients.
-template <class S>
-inline V3<S> rotate(const V3<S>& w, const S& a, const S& b, const V3<S>& v) {
-  const V3<S> wv = cross(w, v);
-  return v + a * wv + b * cross(w, wv);
-}
-
-/// Coefficients sin(t)/t and (1 - cos t)/t^2 of the Rodrigues formula, smooth at t = 0.
-template <class S>
-inline void rodrigues_coefficients(const S& t2, S& a, S& b) {
-  using std::cos;
-  using std::sin;
-  using std::sqrt;
-  if (value_of(t2) < 1e-6) {
-    a = S(1.0) - t2 * (S(1.0 / 6.0) - t2 * (S(1.0 / 120.0) - t2 * S(1.0 / 5040.0)));
-    b = S(0.5) - t2 * (S(1.0 / 24.0) - t2 * (S(1.0 / 720.0) - t2 * S(1.0 / 40320.0)));
-  } else {
-    const S t = sqrt(t2);
-    a = sin(t) / t;
-    b = (S(1.0) - cos(t)) / t2;
-  }
-}
-
-}  // namespace detail
-
-/// Applies the joint rotation of `scheme` to the vectors v[0..count): second_order uses exp(omega); the
-/// paper's scheme twists about the link axis first and then bends (spec §2.1, text after eq. (2)).
-template <class S>
-inline void apply_joint_rotation(Scheme scheme, const V3<S>& omega, V3<S>* v, int count) {
-  if (scheme == Scheme::second_order) {
-    S a, b;
-    detail::rodrigues_coefficients(dot(omega, omega), a, b);
-    for (int i = 0; i < count; ++i) v[i] = detail::rotate(omega, a, b, v[i]);
-    return;
-  }
-  using std::cos;
-  using std::sin;
-  const S ct = cos(omega.x), st = sin(omega.x);
-  const V3<S> bend(S(0.0), omega.y, omega.z);
+inline void apply_joint_rotation(const V3<S>& omega, V3<S>* v, int count) {
   S a, b;
-  detail::rodrigues_coefficients(omega.y * omega.y + omega.z * omega.z, a, b);
-  for (int i = 0; i < count; ++i) {
-    const V3<S> twisted(v[i].x, ct * v[i].y - st * v[i].z, st * v[i].y + ct * v[i].z);
-    v[i] = detail::rotate(bend, a, b, twisted);
-  }
+  detail::rodrigues_coefficients(dot(omega, omega), a, b);
+  for (int i = 0; i < count; ++i) v[i] = detail::rotate(omega, a, b, v[i]);
 }
 
 /// Deflects the whisker under a follower force `force_L` and couple `couple_L` (components in the frame of
@@ -82,25 +36,23 @@ inline void apply_joint_rotation(Scheme scheme, const V3<S>& omega, V3<S>* v, in
 template <class S>
 ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>& couple_L, const S& s,
                              Eigen::Vector3d* omega_out = nullptr) {
+  if (w.properties().scheme == Scheme::paper) return deflect_published<S>(w, force_L, couple_L, s);
   int k;
   double h0;
   w.locate(value_of(s), k, h0);
   const S h = s - S(w.node_arc_lengths()[static_cast<std::size_t>(k)]);
-  const auto& cb = w.bending_compliance();
-  const auto& ct = w.torsion_compliance();
   const auto& weight = w.joint_weight();
   const auto& Q = w.rest_joint_rotations();
   const auto& ell = w.link_lengths();
-  const Scheme scheme = w.properties().scheme;
   const double base_extra = w.base_extra_compliance();
 
   // v[0] = r (node j -> contact), v[1] = F, v[2] = C, v[3] = tangent of the loaded link.
   V3<S> v[4] = {V3<S>(h, S(0.0), S(0.0)), force_L, couple_L, V3<S>(S(1.0), S(0.0), S(0.0))};
-  if (scheme == Scheme::second_order) {  // load frame follows the smooth rest tangent at s (whisker.hpp)
+  {  // load frame follows the smooth rest tangent at s (whisker.hpp)
     const Eigen::Vector3d& kappa = w.load_frame_curvature()[static_cast<std::size_t>(k)];
     const S offset = h - S(0.5 * ell[static_cast<std::size_t>(k)]);
     const V3<S> psi(offset * kappa.x(), offset * kappa.y(), offset * kappa.z());
-    apply_joint_rotation(Scheme::second_order, psi, v + 1, 3);
+    apply_joint_rotation(psi, v + 1, 3);
   }
   if (omega_out)
     for (int j = k + 1; j < w.links(); ++j) omega_out[j].setZero();
@@ -116,33 +68,29 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
     } else {
       M = S(weight[u]) * (cross(v[0], v[1]) + v[2]);
     }
-    V3<S> omega;
-    if (scheme == Scheme::paper) {  // the published split: components in the distal link's own frame
-      omega = V3<S>(ct[u] * M.x, cb[u] * M.y, cb[u] * M.z);
-    } else {
-      // Split twist from bending in the joint's mid frame (rest half-rotation in the compliance matrix, the
-      // elastic half-rotation by one predictor-corrector step): second order for curved, twisted rods.
-      const Eigen::Matrix3d& K = w.joint_compliance_link()[u];
-      const V3<S> predictor = mul(K, M);
-      omega = mul(K, M + S(0.5) * cross(predictor, M));
-    }
+    // Split twist from bending in the joint's mid frame (rest half-rotation in the compliance matrix, the
+    // elastic half-rotation by one predictor-corrector step): second order for curved, twisted rods.
+    const Eigen::Matrix3d& K = w.joint_compliance_link()[u];
+    const V3<S> predictor = mul(K, M);
+    V3<S> omega = mul(K, M + S(0.5) * cross(predictor, M));
     if (j == 0 && base_extra > 0.0) {  // follicle spring in series (moment, not weighted)
       const V3<S> Mb = cross(v[0], v[1]) + v[2];
       omega.y += base_extra * Mb.y;
       omega.z += base_extra * Mb.z;
     }
     if (omega_out) omega_out[j] = Eigen::Vector3d(value_of(omega.x), value_of(omega.y), value_of(omega.z));
-    apply_joint_rotation(scheme, omega, v, 4);
+    apply_joint_rotation(omega, v, 4);
     for (auto& x : v) x = mul(Q[u], x);
     if (j > 0) v[0].x += ell[u - 1];
   }
   return {v[0], v[1], v[2], v[3]};
 }
 
-/// Rotation matrix of a joint rotation vector under `scheme` (consistent with apply_joint_rotation).
-Eigen::Matrix3d joint_rotation_matrix(Scheme scheme, const Eigen::Vector3d& omega);
+/// Rotation matrix of a joint rotation vector (consistent with apply_joint_rotation).
+Eigen::Matrix3d joint_rotation_matrix(const Eigen::Vector3d& omega);
 
-/// Nodes of the deflected whisker in B (size N+1) from the joint rotations written by deflect().
+/// Nodes of the deflected whisker in B (size N+1) from the joint rotations written by deflect() (second-order
+/// scheme; the paper scheme's are published_nodes_B()).
 void deflected_nodes_B(const Whisker& w, const Eigen::Vector3d* omega, std::vector<Eigen::Vector3d>& nodes_B);
 
 }  // namespace vibrissa

@@ -4,11 +4,13 @@
 // Model): immutable after construction and shared by every frame and thread. Where it is — a Placement
 // (R_WB, p_W_base) — is a small value given to each solve; the forward model (chain.hpp) works in B and
 // writes only into caller-owned storage.
+#include <array>
 #include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "vibrissa/core/cubic_spline.hpp"
 #include "vibrissa/core/pose.hpp"
 
 namespace vibrissa {
@@ -16,7 +18,7 @@ namespace vibrissa {
 /// How the continuous rod is discretised into joints (docs/conventions.md, "Discretisation").
 enum class Scheme {
   second_order,  ///< default: trapezoidal joint compliance, error O(1/N^2)
-  paper,         ///< the published chain: each joint rotated by its own moment times the link length, O(1/N)
+  paper,         ///< Elastica3D v1's chain exactly (published_chain.hpp), O(1/N)
 };
 
 /// Boundary condition at the follicle (spec §2.1).
@@ -43,7 +45,8 @@ void validate(const WhiskerProperties& props);
 
 class Whisker {
  public:
-  /// Rest shape from 3D points, base first (>= 3). Without a pose the points are in world coordinates and
+  /// Rest shape from 3D points, base first (>= 3). The second-order scheme resamples them into `links`
+  /// equal links; the paper scheme keeps them as its nodes (links = points - 1), as Elastica3D does. Without a pose the points are in world coordinates and
   /// their placement becomes placement(); with a pose only their shape is used and placement() is the pose.
   static Whisker from_points(const std::vector<Eigen::Vector3d>& points, const WhiskerProperties& props,
                              const std::optional<Pose>& pose = std::nullopt);
@@ -96,6 +99,14 @@ class Whisker {
   /// Bending stiffness at the base E I_0 [N·m^2] (scales every solve).
   [[nodiscard]] double base_bending_stiffness() const { return 1.0 / cb_.front(); }
 
+  /// Paper scheme: MATLAB splines (cubic_spline.hpp) against node arc length through the rest nodes in B,
+  /// and through E and I = pi r^4 / 4 at nodes 1..N, with which Elastica3D re-meshes the chain for each load.
+  struct PublishedRemesh {
+    std::array<CubicSpline, 3> node_B;
+    CubicSpline youngs, inertia;
+  };
+  [[nodiscard]] const PublishedRemesh& published_remesh() const { return remesh_; }
+
   /// The placement the whisker was built with (the pose given to the factory, or where its points lay).
   /// Solves called without a Placement use it; per-frame code passes its own.
   [[nodiscard]] const Placement& placement() const { return placement_; }
@@ -121,6 +132,7 @@ class Whisker {
   std::vector<double> cb_, ct_, weight_, weight_load_base_;
   double weight_load_slope_ = 0.0;
   double base_extra_compliance_ = 0.0;
+  PublishedRemesh remesh_;
   Placement placement_;
 };
 

@@ -48,6 +48,13 @@ enum class FrictionState : std::int8_t {
 };
 std::string_view to_string(FrictionState state);
 
+/// One root of a contact solve (an equilibrium through the same target).
+struct Root {
+  double arc_length = 0.0;       ///< s [m]
+  double force_magnitude = 0.0;  ///< |F| [N]
+  double residual = 0.0;         ///< [m]
+};
+
 struct Solution {
   Status status = Status::not_converged;
   ContactState contact_state = ContactState::free;
@@ -57,7 +64,7 @@ struct Solution {
   std::string_view message;  ///< human-readable detail (static text); decide from the typed fields, never from this
   double force_magnitude = 0.0;  ///< |F| [N]
   double arc_length = 0.0;       ///< s_applied [m]
-  double angle = 0.0;            ///< direction of F about the loaded link's axis, atan2(F_z, F_y) [rad]
+  double angle = 0.0;            ///< force-mode angle of F (docs/conventions.md, "Loads and signs") [rad]
   Eigen::Vector3d contact_point = Eigen::Vector3d::Zero();  ///< [m], world
   /// Force the whisker transmits to the follicle: the contact force, world [N] (as the published model).
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
@@ -70,6 +77,8 @@ struct Solution {
   int iterations = 0;
   std::vector<Eigen::Vector3d> shape;  ///< deflected nodes, base to tip, world [m]
   std::optional<double> other_root_arc_length;  ///< another root exists at this arc length [m]
+  /// Every distinct root the solve found, by arc length (point mode with a hint or find_other_roots).
+  std::vector<Root> roots;
   LoadState state;                     ///< the solved unknowns, for warm starts
 };
 

@@ -12,8 +12,9 @@
 namespace vibrissa {
 
 /// Force mode: a force of magnitude `force` [N] normal to the whisker at arc length `arc_length` [m], at
-/// `angle` [rad] about the whisker axis (0 = +y of the loaded link, i.e. toward the concave side of a planar
-/// whisker; pi/2 = +z). The force follows the link as it bends. Explicit, O(N).
+/// `angle` [rad] about the whisker axis: second-order scheme, 0 = +y of the loaded link, i.e. toward the
+/// concave side of a planar whisker, pi/2 = +z; paper scheme, Elastica3D's ζ (docs/conventions.md, "Loads
+/// and signs"). The force follows the link as it bends. Explicit, O(N).
 Solution solve_force(const Whisker& whisker, const Placement& X_WB, double force, double arc_length, double angle,
                      const SolveOptions& options = {});
 
