@@ -90,9 +90,13 @@ void register_trial(CLI::App& app) {
     const trial::TrialAnalysis& analysis = run.analysis;
     std::cout << "vibrissa trial: " << tr.frames() << " frames, " << run.result.pre.periods.size()
               << " contact periods, " << contact << " contact frames solved in " << run.pipeline_seconds << " s\n";
-    if (analysis.friction)
-      std::cout << "  median mu (contact-point mode, F_N >= 0.1 mN): " << analysis.friction->median << " over "
-                << analysis.friction->frames_used << " frames\n";
+    if (analysis.friction) {
+      const trial::FrictionAnalysis& f = *analysis.friction;
+      std::cout << "  median mu (contact-point mode, F_N >= 0.1 mN): " << f.median << " over " << f.frames_used
+                << " frames (" << (f.kind.empty() ? "none" : f.kind) << "; " << f.frames_slipping
+                << " slipping, median over those " << f.median_slipping << ")\n";
+      for (const std::string& w : f.warnings) std::cerr << "vibrissa trial: warning: " << w << "\n";
+    }
     if (analysis.z_error && analysis.z_error->fit_eq6.all)
       std::cout << "  eq. (6) fit: slope " << analysis.z_error->fit_eq6.all->slope << ", r2 "
                 << analysis.z_error->fit_eq6.all->r2 << "\n";

@@ -64,7 +64,10 @@ nlohmann::json fit_json(const std::optional<LineFit>& f) {
 }
 
 nlohmann::json friction_json(const FrictionAnalysis& a) {
-  return {{"median", num(a.median)}, {"mean", num(a.mean)}, {"sd", num(a.sd)}, {"min", num(a.min)},
+  return {{"median", num(a.median)}, {"kind", a.kind.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.kind)},
+          {"slip_fraction", num(a.slip_fraction)}, {"frames_slipping", a.frames_slipping},
+          {"median_slipping", num(a.median_slipping)}, {"warnings", a.warnings},
+          {"mean", num(a.mean)}, {"sd", num(a.sd)}, {"min", num(a.min)},
           {"max", num(a.max)}, {"frames_used", a.frames_used}, {"outliers_low_normal_force", a.outliers},
           {"histogram_edges", a.histogram_edges}, {"histogram_counts", a.histogram_counts},
           {"normal_force_bins_N", a.fn_bin_center}, {"mu_mean_per_bin", [&] {

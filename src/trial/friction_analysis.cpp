@@ -28,11 +28,39 @@ FrictionAnalysis analyse_friction(const PipelineResult& r, Mode mode, const Fric
     }
   }
   a.frames_used = used_mu.size();
+  // Slip: the contact point moves along the edge (central difference of its height within the period).
+  a.slipping.assign(n, false);
+  std::vector<double> slipping_mu;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!a.used[i]) continue;
+    const std::size_t lo = i > 0 && r.frames[i - 1].period == r.frames[i].period ? i - 1 : i;
+    const std::size_t hi = i + 1 < n && r.frames[i + 1].period == r.frames[i].period ? i + 1 : i;
+    const double h_lo = r.frames[lo].mode(mode).height, h_hi = r.frames[hi].mode(mode).height;
+    const double dt = r.frames[hi].time - r.frames[lo].time;
+    if (hi == lo || !(dt > 0.0) || !std::isfinite(h_lo) || !std::isfinite(h_hi)) continue;
+    if (std::abs(h_hi - h_lo) / dt > o.slip_speed) {
+      a.slipping[i] = true;
+      slipping_mu.push_back(a.mu[i]);
+    }
+  }
+  a.frames_slipping = slipping_mu.size();
   a.histogram_edges.resize(static_cast<std::size_t>(o.histogram_bins) + 1);
   for (int b = 0; b <= o.histogram_bins; ++b) a.histogram_edges[static_cast<std::size_t>(b)] = o.histogram_max * b / o.histogram_bins;
   a.histogram_counts.assign(static_cast<std::size_t>(o.histogram_bins), 0);
-  if (used_mu.empty()) return a;
+  if (used_mu.empty()) {
+    a.warnings.push_back("mu: no contact frame with F_N >= " + std::to_string(o.outlier_normal_force * 1e3) +
+                         " mN outside the first and last two frames of a contact period (is the object in reach?)");
+    return a;
+  }
   a.median = median(used_mu);
+  a.slip_fraction = static_cast<double>(a.frames_slipping) / static_cast<double>(a.frames_used);
+  a.kind = a.slip_fraction >= o.min_slip_fraction ? "estimate" : "lower_bound";
+  if (!slipping_mu.empty()) a.median_slipping = median(slipping_mu);
+  else a.warnings.push_back("mu: no used frame slips along the edge, so no median over slipping frames");
+  if (a.kind == "lower_bound")
+    a.warnings.push_back("mu: only " + std::to_string(a.frames_slipping) + " of " + std::to_string(a.frames_used) +
+                         " frames slip; in sticking frames |F_edge| / F_N is below mu, so the median is a lower "
+                         "bound on mu, not an estimate");
   a.mean = mean(used_mu);
   a.sd = standard_deviation(used_mu);
   a.min = *std::min_element(used_mu.begin(), used_mu.end());

@@ -40,6 +40,23 @@ TEST(TrialPipeline, RecoversMuFromANoiseFreeSyntheticTrial) {
   EXPECT_GT(a.z_error->measured_max, 1e-3);
 }
 
+TEST(TrialPipeline, MuIsALowerBoundWhenTheContactSticks) {
+  // mu = 0.48: the contact slides up the peg in most used frames, so the median estimates mu; mu = 1.0: it
+  // sticks, |F_edge| / F_N stays below mu, and the analysis says the median is only a lower bound.
+  const TrialAnalysis slides = analyse_trial(run_pipeline(synthesize_trial(short_trial(0.48))));
+  ASSERT_TRUE(slides.friction);
+  EXPECT_EQ(slides.friction->kind, "estimate");
+  EXPECT_GT(slides.friction->slip_fraction, 0.9);
+  EXPECT_NEAR(slides.friction->median_slipping, 0.48, 0.02);
+  const TrialAnalysis sticks = analyse_trial(run_pipeline(synthesize_trial(short_trial(1.0))));
+  ASSERT_TRUE(sticks.friction);
+  EXPECT_EQ(sticks.friction->kind, "lower_bound");
+  EXPECT_LT(sticks.friction->slip_fraction, 0.5);
+  EXPECT_LT(sticks.friction->median, 1.0);
+  ASSERT_FALSE(sticks.friction->warnings.empty());
+  EXPECT_NE(sticks.friction->warnings.back().find("lower bound"), std::string::npos);
+}
+
 TEST(TrialPipeline, FrictionConeHoldsInEveryFrame) {
   const Trial t = synthesize_trial(short_trial(0.3));
   PipelineOptions po;
