@@ -1,5 +1,6 @@
 #include "vibrissa/trial/synth.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -31,6 +32,10 @@ Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const RunContro
   require(o.noise_position >= 0.0 && o.noise_angle >= 0.0, "noise levels must be >= 0");
   require(o.protraction_fraction > 0.0 && o.protraction_fraction < 1.0, "protraction fraction must lie in (0, 1)");
   require(o.rest_points >= 3 && o.shape_nodes >= 2, "need >= 3 rest points and >= 2 shape nodes");
+  require(std::isfinite(o.theta_center_jitter) && o.theta_center_jitter >= 0.0,
+          "theta_center_jitter_deg must be finite and >= 0, got " + std::to_string(o.theta_center_jitter * 180.0 / std::numbers::pi));
+  require(std::isfinite(o.theta_amplitude_jitter) && o.theta_amplitude_jitter >= 0.0,
+          "theta_amplitude_jitter must be finite and >= 0, got " + std::to_string(o.theta_amplitude_jitter));
 
   Trial t;
   t.source = "synthetic";
@@ -47,13 +52,30 @@ Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const RunContro
 
   const auto n = static_cast<std::size_t>(std::floor(o.duration * o.frame_rate));
   require(n >= 10, "the trial needs at least 10 frames");
+  // Whisk k rises from its trough c_k - A_k to its peak c_k + A_k by a half cosine over protraction_fraction of
+  // the cycle, then falls to the next whisk's trough: theta is continuous whatever the whisk-to-whisk
+  // variation of set-point c_k and amplitude A_k (their own random stream, so tracking noise is unchanged).
+  const auto whisks = static_cast<std::size_t>(std::ceil(o.duration * o.whisk_frequency)) + 2;
+  std::vector<double> trough(whisks), peak(whisks);
+  {
+    std::mt19937_64 whisk_rng(o.seed ^ 0x9e3779b97f4a7c15ULL);
+    std::normal_distribution<double> g(0.0, 1.0);
+    for (std::size_t k = 0; k < whisks; ++k) {
+      const double c = o.theta_center + o.theta_center_jitter * g(whisk_rng);
+      const double A = o.theta_amplitude * std::max(0.1, 1.0 + o.theta_amplitude_jitter * g(whisk_rng));
+      trough[k] = c - A;
+      peak[k] = c + A;
+    }
+  }
   std::vector<Pose> poses(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double time = static_cast<double>(i) / o.frame_rate;
-    // One whisk: protraction by a half cosine over protraction_fraction of the cycle, then retraction.
-    const double phase = std::fmod(o.whisk_frequency * time, 1.0), pf = o.protraction_fraction;
-    const double theta = phase < pf ? o.theta_center - o.theta_amplitude * std::cos(std::numbers::pi * phase / pf)
-                                    : o.theta_center + o.theta_amplitude * std::cos(std::numbers::pi * (phase - pf) / (1.0 - pf));
+    const double cycles = o.whisk_frequency * time, pf = o.protraction_fraction;
+    const auto k = static_cast<std::size_t>(std::floor(cycles));
+    const double phase = cycles - std::floor(cycles);
+    const double rise = phase < pf ? 0.5 * (1.0 - std::cos(std::numbers::pi * phase / pf))
+                                   : 0.5 * (1.0 - std::cos(std::numbers::pi * (phase - pf) / (1.0 - pf)));
+    const double theta = phase < pf ? trough[k] + (peak[k] - trough[k]) * rise : peak[k] + (trough[k + 1] - peak[k]) * rise;
     poses[i].theta = theta;
     poses[i].phi = o.phi_center + o.phi_slope * (theta - o.theta_center);    // spec §2.2
     poses[i].zeta = o.zeta_center + o.zeta_slope * (theta - o.theta_center);  // spec §2.2

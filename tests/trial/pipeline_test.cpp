@@ -30,7 +30,7 @@ TEST(TrialPipeline, RecoversMuFromANoiseFreeSyntheticTrial) {
   const PipelineResult r = run_pipeline(t, po);
   const TrialAnalysis a = analyse_trial(r);
   ASSERT_TRUE(a.friction);
-  EXPECT_GT(a.friction->frames_used, 200u);
+  EXPECT_GT(a.friction->frames_used, 150u);
   EXPECT_NEAR(a.friction->median, 0.48, 0.02);
   // Eq. (6) (linear tapered beam) predicts the measured z_error with a slope near 1.
   ASSERT_TRUE(a.z_error && a.z_error->fit_eq6.all);
@@ -46,7 +46,7 @@ TEST(TrialPipeline, MuIsALowerBoundWhenTheContactSticks) {
   const TrialAnalysis slides = analyse_trial(run_pipeline(synthesize_trial(short_trial(0.48))));
   ASSERT_TRUE(slides.friction);
   EXPECT_EQ(slides.friction->kind, "estimate");
-  EXPECT_GT(slides.friction->slip_fraction, 0.9);
+  EXPECT_GT(slides.friction->slip_fraction, 0.75);
   EXPECT_NEAR(slides.friction->median_slipping, 0.48, 0.02);
   const TrialAnalysis sticks = analyse_trial(run_pipeline(synthesize_trial(short_trial(1.0))));
   ASSERT_TRUE(sticks.friction);
@@ -122,4 +122,33 @@ TEST(TrialPipeline, SyntheticTrialSurvivesTheFileRoundTrip) {
   ASSERT_EQ(back.frames(), t.frames());
   const TrialAnalysis a = analyse_trial(run_pipeline(back));
   EXPECT_NEAR(a.friction->median, 0.48, 0.02);
+}
+
+TEST(SyntheticTrial, WhisksVaryFromWhiskToWhiskAndThetaStaysContinuous) {
+  SynthOptions o = short_trial(0.48);
+  o.duration = 2.0;
+  const Trial varied = synthesize_trial(o);
+  // Peaks of theta per whisk (local maxima): different from whisk to whisk, by about the set-point and
+  // amplitude jitter (2 deg, 10 % of 30 deg).
+  std::vector<double> peaks;
+  for (std::size_t i = 1; i + 1 < varied.frames(); ++i)
+    if (varied.theta[i] > varied.theta[i - 1] && varied.theta[i] >= varied.theta[i + 1]) peaks.push_back(varied.theta[i]);
+  ASSERT_GE(peaks.size(), 15u);
+  double spread = 0.0, step_at_joins = 0.0;
+  for (double p : peaks) spread = std::max(spread, std::abs(p - peaks.front()));
+  // Where one whisk ends and the next begins theta sits at a trough (zero slope): a join without a jump moves
+  // it by second-order amounts only, while a jump would be of the order of the jitter (~0.05 rad).
+  for (std::size_t i = 1; i < varied.frames(); ++i)
+    if (std::floor(o.whisk_frequency * varied.time[i]) != std::floor(o.whisk_frequency * varied.time[i - 1]))
+      step_at_joins = std::max(step_at_joins, std::abs(varied.theta[i] - varied.theta[i - 1]));
+  EXPECT_GT(spread, 0.02);          // rad: the whisks are not copies of one whisk
+  EXPECT_LT(step_at_joins, 2e-3);   // rad: no jump where whisks join
+  // 1000 Hz / 8.3 Hz is not a whole number of frames: successive whisk onsets fall on different phases.
+  EXPECT_NE(std::fmod(o.frame_rate / o.whisk_frequency, 1.0), 0.0);
+  // Without jitter at 8 Hz every whisk is the same 125 frames.
+  o.theta_center_jitter = 0.0;
+  o.theta_amplitude_jitter = 0.0;
+  o.whisk_frequency = 8.0;
+  const Trial same = synthesize_trial(o);
+  for (std::size_t i = 125; i < same.frames(); ++i) ASSERT_NEAR(same.theta[i], same.theta[i - 125], 1e-12) << i;
 }

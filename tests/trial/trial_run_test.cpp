@@ -16,7 +16,9 @@ TEST(SynthParameters, DefaultsAreSynthOptionsInTheNamedUnits) {
   const auto d = synth_parameter_defaults();
   EXPECT_EQ(d.size(), synth_parameters().size());
   EXPECT_EQ(d.at("duration"), SynthOptions{}.duration);
-  EXPECT_EQ(d.at("whisk_hz"), 8.0);
+  EXPECT_EQ(d.at("whisk_hz"), 8.3);
+  EXPECT_NEAR(d.at("theta_center_jitter_deg"), 2.0, 1e-12);
+  EXPECT_EQ(d.at("theta_amplitude_jitter"), 0.1);
   EXPECT_NEAR(d.at("theta_center_deg"), 10.0, 1e-12);
   EXPECT_NEAR(d.at("peg_azimuth_deg"), 34.0, 1e-12);
   EXPECT_EQ(d.at("whisker_length_mm"), 35.0);

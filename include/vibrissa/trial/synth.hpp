@@ -16,9 +16,16 @@ namespace vibrissa::trial {
 struct SynthOptions {
   double duration = 2.0;       ///< [s]
   double frame_rate = 1000.0;  ///< [Hz]
-  double whisk_frequency = 8.0;  ///< [Hz]
+  /// [Hz]. Not a divisor of the default frame rate (1000 / 8.3 = 120.5 frames per whisk), so whisks do not
+  /// repeat frame for frame.
+  double whisk_frequency = 8.3;
   double theta_center = 10.0 * 0.017453292519943295;     ///< [rad]
   double theta_amplitude = 30.0 * 0.017453292519943295;  ///< [rad]
+  /// Whisk-to-whisk variation (seeded by `seed`): each whisk's set-point is theta_center plus a Gaussian of this
+  /// sd [rad], its amplitude theta_amplitude times (1 + a Gaussian of this relative sd). Consecutive whisks
+  /// join at their troughs, so theta stays continuous. Zero for identical whisks.
+  double theta_center_jitter = 2.0 * 0.017453292519943295;
+  double theta_amplitude_jitter = 0.1;
   /// Fraction of each whisk spent protracting (theta rising, half-cosine) before a faster retraction.
   double protraction_fraction = 0.7;
   double phi_center = 0.0;     ///< [rad] elevation at theta_center
