@@ -67,7 +67,7 @@ void register_reconstruct(CLI::App& app) {
   cmd->add_option("--max-reprojection-px", opt.max_reprojection_px, "flag frames above this RMS reprojection error [px]")->capture_default_str();
   cmd->add_option("--contact-threshold-um", a->contact_threshold_um, "closest approach to an edge counted as contact [um]")->capture_default_str();
   cmd->add_option("--base-jump-um", a->base_jump_um, "flag frames whose base leaves the local median by more [um]")->capture_default_str();
-  cmd->add_option("--fit-degree", opt.fit_degree, "polynomial degree of the 3D curve")->capture_default_str();
+  cmd->add_option("--fit-segments", opt.fit_segments, "knot intervals of the cubic B-spline 3D curve")->capture_default_str();
   cmd->add_option("--nodes", opt.nodes, "segments of the written 3D shape")->capture_default_str();
   cmd->add_option("--report", a->report, "also write a JSON report (per-frame status, undeflected shapes)");
   cmd->callback([a] {

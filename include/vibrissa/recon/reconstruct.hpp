@@ -2,9 +2,9 @@
 // From two tracked views to 3D whiskers and a trial (docs/reconstruction.md). Per frame: drop points below
 // the likelihood threshold, match the top-view points to the front-view polyline by the epipolar constraint
 // (the intersection nearest the same relative arc length, kept monotonic along the whisker), triangulate,
-// reject reprojection outliers, fit a smooth 3D curve (polynomial in chord length, Tukey-weighted IRLS, weights
-// = likelihoods), resample it, and read base point, theta/phi/zeta (core/rest_curve.hpp whisker_frame,
-// core/pose.hpp) and the closest approach to the object's edges. Frames that fail are flagged with a status
+// reject reprojection outliers, fit a smooth 3D curve (penalised cubic B-spline, Tukey-weighted IRLS, weights
+// = likelihoods), resample it, and read base point, theta/phi (base tangent), zeta (core/rest_curve.hpp
+// whisker_frame, core/pose.hpp) and the closest approach to the object's edges. Frames that fail are flagged with a status
 // and carry NaN, never invented values.
 #include <cstdint>
 #include <string>
@@ -25,7 +25,7 @@ struct ReconstructOptions {
   int min_points = 6;                 ///< matched points needed per frame
   double max_reprojection_px = 2.0;   ///< frame flagged when the RMS reprojection error exceeds this [px]
   double outlier_px = 4.0;            ///< points whose reprojection error exceeds max(this, 3 median) are dropped
-  int fit_degree = 5;                 ///< polynomial degree of the 3D curve
+  int fit_segments = 6;               ///< knot intervals of the cubic B-spline 3D curve
   int nodes = 40;                     ///< points of the reconstructed shape (nodes + 1 written)
   double contact_threshold = 0.3e-3;  ///< closest approach to an edge counted as contact [m]
   double base_jump = 1.0e-3;          ///< base farther than this from the local median base is flagged [m]
@@ -54,7 +54,7 @@ struct ReconstructedFrame {
   double theta, phi, zeta;  ///< [rad], NaN unless ok
   std::vector<Eigen::Vector3d> shape_W;  ///< base first; empty unless ok
   bool contact = false;
-  Eigen::Vector3d contact_W;  ///< point of the whisker nearest the edge (contact frames), else NaN
+  Eigen::Vector3d contact_W;  ///< point of the edge nearest the whisker (contact frames), else NaN
   double contact_s = 0.0;     ///< its arc length from the base [m] (NaN outside contact)
   double approach = 0.0;      ///< closest distance to the edges [m] (NaN without edges or when not ok)
   ReconstructedFrame();
