@@ -161,7 +161,7 @@ TEST(Reconstruct, BasePointLostInOneViewIsRecoveredFromTheOtherNotFlagged) {
 }
 
 TEST(Reconstruct, BaseAnglesOfADeflectedShapeIgnoreTheCurvatureKinkAtContact) {
-  // y = 8 x^2 + 5e5 (x - 18 mm)^3 beyond 18 mm (0.9 mm at the tip): the derivative of the curvature jumps
+  // y = 8 x^2 + 500 (x - 18 mm)^3 beyond 18 mm (0.86 mm at the tip): the derivative of the curvature jumps
   // there, as at a contact point (the shear force ends); the base tangent (theta, phi) must not tilt.
   const Camera top = test_support::top_test_camera(-0.1, 0.02), front = test_support::front_test_camera(0.05, 0.0);
   const Pose pose = pose_at(2);
@@ -169,7 +169,7 @@ TEST(Reconstruct, BaseAnglesOfADeflectedShapeIgnoreTheCurvatureKinkAtContact) {
   std::vector<Eigen::Vector3d> pts;
   for (int i = 0; i < 25; ++i) {
     const double x = 0.03 * i / 24.0, k = std::max(0.0, x - 0.018);
-    pts.push_back(X.to_world(Eigen::Vector3d(x, 8.0 * x * x + 5e5 * k * k * k, 0.0)));
+    pts.push_back(X.to_world(Eigen::Vector3d(x, 8.0 * x * x + 500.0 * k * k * k, 0.0)));
   }
   Tracks2D a, b;
   a.frames.push_back(view(0, top, pts));

@@ -2,10 +2,10 @@
 // From two tracked views to 3D whiskers and a trial (docs/reconstruction.md). Per frame: drop points below
 // the likelihood threshold, match the top-view points to the front-view polyline by the epipolar constraint
 // (the intersection nearest the same relative arc length, kept monotonic along the whisker), triangulate,
-// reject reprojection outliers, fit a smooth 3D curve (penalised cubic B-spline, Tukey-weighted IRLS, weights
+// reject reprojection outliers, fit a smooth 3D curve (cubic B-spline, Tukey-weighted IRLS, weights
 // = likelihoods), resample it, and read base point, theta/phi (base tangent), zeta (core/rest_curve.hpp
-// whisker_frame, core/pose.hpp) and the closest approach to the object's edges. Frames that fail are flagged with a status
-// and carry NaN, never invented values.
+// whisker_frame, core/pose.hpp) and the closest approach to the object's edges. Frames that fail are flagged
+// with a status and carry NaN, never invented values.
 #include <cstdint>
 #include <string>
 #include <vector>
