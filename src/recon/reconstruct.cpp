@@ -53,31 +53,40 @@ struct Match {
 };
 
 /// Where the epipolar line `l` (unit normal, ideal pixels) crosses the parabola through the three end points of
-/// a view beyond its base (`at_base`) or tip, near the straight extension's parameter `t_line` (in segments of
-/// the end segment): the measured pixel there, or nullopt when the line misses the parabola.
+/// a view beyond its base (`at_base`) or tip, near the straight extension's parameter `t_line` (in units of
+/// the end segment): the measured pixel there, or nullopt when the line misses the parabola beyond the end.
+/// The parabola is parameterised by chord length (points need not be equally spaced: some may be lost).
 std::optional<Eigen::Vector2d> end_parabola(const ViewPoints& v, const Eigen::Vector3d& l, bool at_base, double t_line) {
   const std::size_t n = v.ideal.size();
-  // Nodes at tau = 0, 1, 2; the base end runs from point 0 inward, the tip end from point n - 3 outward.
+  // Nodes at chord lengths 0, s1, s2 from point 0 (base end) or from point n - 3 (tip end).
   const std::array<std::size_t, 3> k = at_base ? std::array<std::size_t, 3>{0, 1, 2}
                                                : std::array<std::size_t, 3>{n - 3, n - 2, n - 1};
-  const double tau_line = at_base ? t_line : 1.0 + t_line;
+  const double s1 = (v.ideal[k[1]] - v.ideal[k[0]]).norm(), s2 = s1 + (v.ideal[k[2]] - v.ideal[k[1]]).norm();
+  if (!(s1 > 0.0 && s2 > s1)) return std::nullopt;
+  const double sigma_line = at_base ? t_line * s1 : s1 + t_line * (s2 - s1);
+  // Newton form: f(sigma) = f0 + sigma f01 + sigma (sigma - s1) f012.
+  const auto newton = [&](const Eigen::Vector2d& f0, const Eigen::Vector2d& f1, const Eigen::Vector2d& f2,
+                          double sigma) -> Eigen::Vector2d {
+    const Eigen::Vector2d f01 = (f1 - f0) / s1;
+    const Eigen::Vector2d f012 = ((f2 - f1) / (s2 - s1) - f01) / s2;
+    return f0 + sigma * f01 + sigma * (sigma - s1) * f012;
+  };
   std::array<double, 3> d{};
   for (std::size_t m = 0; m < 3; ++m) d[m] = l.dot(v.ideal[k[m]].homogeneous());
-  // d(tau) = d0 + tau (d1 - d0) + tau (tau - 1) / 2 (d2 - 2 d1 + d0) = a tau^2 + b tau + c
-  const double a = 0.5 * (d[2] - 2.0 * d[1] + d[0]), b = d[1] - d[0] - a, c = d[0];
-  double tau = 0.0;
-  if (std::abs(a) <= 1e-12 * (std::abs(b) + std::abs(c))) {
+  const double f01 = (d[1] - d[0]) / s1, f012 = ((d[2] - d[1]) / (s2 - s1) - f01) / s2;
+  const double a = f012, b = f01 - s1 * f012, c = d[0];  // a sigma^2 + b sigma + c
+  double sigma = 0.0;
+  if (std::abs(a) * s2 * s2 <= 1e-12 * (std::abs(b) * s2 + std::abs(c))) {
     if (b == 0.0) return std::nullopt;
-    tau = -c / b;
+    sigma = -c / b;
   } else {
     const double disc = b * b - 4.0 * a * c;
     if (disc < 0.0) return std::nullopt;
     const double r1 = (-b + std::sqrt(disc)) / (2.0 * a), r2 = (-b - std::sqrt(disc)) / (2.0 * a);
-    tau = std::abs(r1 - tau_line) < std::abs(r2 - tau_line) ? r1 : r2;
+    sigma = std::abs(r1 - sigma_line) < std::abs(r2 - sigma_line) ? r1 : r2;
   }
-  if (at_base ? tau > 0.0 : tau < 2.0) return std::nullopt;  // not beyond the end
-  const auto node = [&](std::size_t m) { return v.px[k[m]]; };
-  return Eigen::Vector2d(node(0) + tau * (node(1) - node(0)) + 0.5 * tau * (tau - 1.0) * (node(2) - 2.0 * node(1) + node(0)));
+  if (at_base ? sigma > 0.0 : sigma < s2) return std::nullopt;  // not beyond the end
+  return newton(v.px[k[0]], v.px[k[1]], v.px[k[2]], sigma);
 }
 
 /// For each point of `own`, the intersection of its epipolar line (F * x_own) with the `other` polyline

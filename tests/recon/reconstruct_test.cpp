@@ -150,10 +150,12 @@ TEST(Reconstruct, BasePointLostInOneViewIsRecoveredFromTheOtherNotFlagged) {
     b.frames.push_back(view(i, front, pts));
     if (i == 4) a.frames.back().likelihood[0] = 0.1;  // the tracker lost the base in the top view
     if (i == 6) b.frames.back().likelihood[0] = 0.1;  // ... in the front view
+    if (i == 8) a.frames.back().likelihood[0] = a.frames.back().likelihood[3] = 0.1;  // unequal spacing left
+    if (i == 10) b.frames.back().likelihood[0] = b.frames.back().likelihood[1] = 0.1;  // two end points lost
   }
   const Reconstruction rec = reconstruct(a, top, b, front, ReconstructOptions{});
   EXPECT_EQ(rec.count(FrameStatus::ok), 20u);
-  for (std::size_t i : {4u, 6u}) {
+  for (std::size_t i : {4u, 6u, 8u, 10u}) {
     ASSERT_TRUE(rec.frames[i].ok()) << frame_status_name(rec.frames[i].status);
     EXPECT_LT((rec.frames[i].base_W - pose_at(0).p_W_base).norm(), 10e-6);
     EXPECT_NEAR(rec.frames[i].theta, pose_at(0).theta, 0.1 * deg);
