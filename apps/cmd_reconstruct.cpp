@@ -126,7 +126,8 @@ void register_reconstruct(CLI::App& app) {
         nlohmann::json shape = nlohmann::json::array();
         for (const auto& p : u.shape_W) shape.push_back({p.x(), p.y(), p.z()});
         periods.push_back({{"first_frame", u.first_frame}, {"last_frame", u.last_frame},
-                           {"undeflected_from_frame", u.source_frame}, {"undeflected_shape_m", shape}});
+                           {"undeflected_from_frame", u.source_frame}, {"undeflected_frames_averaged", u.frames_averaged},
+                           {"undeflected_shape_m", shape}});
       }
       io::write_json_file(a->report, j);
     }

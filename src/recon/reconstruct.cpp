@@ -368,12 +368,25 @@ Reconstruction reconstruct(const Tracks2D& top, const Camera& top_camera, const 
     UndeflectedShape u;
     u.first_frame = f.frame;
     u.last_frame = rec.frames[good[last]].frame;
-    if (g > 0) {
-      u.source_frame = rec.frames[good[g - 1]].frame;
-      u.shape_W = rec.frames[good[g - 1]].shape_W;
-    } else if (last + 1 < good.size()) {
-      u.source_frame = rec.frames[good[last + 1]].frame;
-      u.shape_W = rec.frames[good[last + 1]].shape_W;
+    // The free stretch before the period (else after it): every free frame up to the neighbouring period.
+    std::vector<std::size_t> stretch;
+    for (std::size_t k = g; k-- > 0 && !rec.frames[good[k]].contact;) stretch.push_back(good[k]);
+    for (std::size_t k = last + 1; stretch.empty() && k < good.size() && !rec.frames[good[k]].contact; ++k)
+      stretch.push_back(good[k]);
+    if (!stretch.empty()) {
+      // Mean of the stretch's shapes in their own whisker frames (a free whisker keeps its shape; one frame
+      // alone carries the full pixel noise), placed at the pose of the free frame nearest the period.
+      const ReconstructedFrame& src = rec.frames[stretch.front()];
+      std::vector<Eigen::Vector3d> mean_B(src.shape_W.size(), Eigen::Vector3d::Zero());
+      for (std::size_t i : stretch) {
+        const ReconstructedFrame& fr = rec.frames[i];
+        const Placement X(Pose{fr.base_W, fr.theta, fr.phi, fr.zeta});
+        for (std::size_t k = 0; k < mean_B.size(); ++k) mean_B[k] += X.R_WB.transpose() * (fr.shape_W[k] - fr.base_W);
+      }
+      const Placement X_src(Pose{src.base_W, src.theta, src.phi, src.zeta});
+      for (const auto& p_B : mean_B) u.shape_W.push_back(src.base_W + X_src.R_WB * (p_B / double(stretch.size())));
+      u.source_frame = src.frame;
+      u.frames_averaged = stretch.size();
     }
     rec.undeflected.push_back(std::move(u));
   }

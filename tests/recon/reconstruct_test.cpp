@@ -183,6 +183,32 @@ TEST(Reconstruct, BaseAnglesOfADeflectedShapeIgnoreTheCurvatureKinkAtContact) {
   EXPECT_NEAR(f.phi, pose.phi, 0.1 * deg);
 }
 
+TEST(Reconstruct, UndeflectedShapeIsTheMeanOfTheFreeStretchPlacedAtItsLastFrame) {
+  const Camera top = test_support::top_test_camera(), front = test_support::front_test_camera();
+  Tracks2D a, b;
+  for (int i = 0; i < 15; ++i) {  // free while whisking (theta grows 3 degrees a frame), then held on a peg
+    const auto pts = whisker_points(pose_at(std::min(i, 12)), 25);
+    a.frames.push_back(view(i, top, pts));
+    b.frames.push_back(view(i, front, pts));
+  }
+  ReconstructOptions o;
+  o.edges.push_back({Placement(pose_at(12)).to_world(Eigen::Vector3d(0.02, 8.0 * 0.02 * 0.02, 0.0)),
+                     Eigen::Vector3d::UnitZ()});
+  const Reconstruction rec = reconstruct(a, top, b, front, o);
+  ASSERT_EQ(rec.count(FrameStatus::ok), 15u);
+  for (int i = 0; i < 15; ++i) EXPECT_EQ(rec.frames[std::size_t(i)].contact, i >= 12) << i;
+  ASSERT_EQ(rec.undeflected.size(), 1u);
+  const UndeflectedShape& u = rec.undeflected[0];
+  EXPECT_EQ(u.first_frame, 12);
+  EXPECT_EQ(u.last_frame, 14);
+  EXPECT_EQ(u.source_frame, 11);
+  EXPECT_EQ(u.frames_averaged, 12u);
+  // Every free frame has the same intrinsic shape: the mean, placed at frame 11, is frame 11's shape.
+  ASSERT_EQ(u.shape_W.size(), rec.frames[11].shape_W.size());
+  for (std::size_t k = 0; k < u.shape_W.size(); ++k)
+    EXPECT_LT((u.shape_W[k] - rec.frames[11].shape_W[k]).norm(), 1e-6);
+}
+
 TEST(Reconstruct, RejectsInvalidOptionsNamingTheField) {
   ReconstructOptions o;
   o.min_likelihood = 2.0;

@@ -61,11 +61,13 @@ struct ReconstructedFrame {
   [[nodiscard]] bool ok() const { return status == FrameStatus::ok; }
 };
 
-/// The undeflected shape of one contact period: the shape of the last free (ok, no contact) frame before it,
-/// else of the first free frame after it.
+/// The undeflected shape of one contact period: the mean, in each frame's whisker frame, of the shapes of the
+/// free (ok, no contact) frames between the previous period and this one (else between it and the next),
+/// placed at the pose of the free frame nearest the period.
 struct UndeflectedShape {
   std::int64_t first_frame = 0, last_frame = 0;  ///< the contact period
-  std::int64_t source_frame = -1;                ///< the free frame the shape comes from (-1: none)
+  std::int64_t source_frame = -1;                ///< the free frame whose pose places the shape (-1: none)
+  std::size_t frames_averaged = 0;               ///< free frames in the mean
   std::vector<Eigen::Vector3d> shape_W;
 };
 
