@@ -92,7 +92,8 @@ void register_reconstruct(CLI::App& app) {
     if (progress) progress->finish();
     io::write_trial(result.trial, a->out);
     std::cout << "vibrissa reconstruct: " << recon::summary_line(result) << " -> " << a->out << "\n";
-    if (!a->report.empty()) io::write_json_file(a->report, nlohmann::json::parse(recon::report_json(result.reconstruction)));
+    if (!a->report.empty())
+      io::write_json_file(a->report, nlohmann::json::parse(recon::report_json(result.reconstruction)));
   });
 }
 

@@ -56,7 +56,8 @@ struct Match {
 /// a view beyond its base (`at_base`) or tip, near the straight extension's parameter `t_line` (in units of
 /// the end segment): the measured pixel there, or nullopt when the line misses the parabola beyond the end.
 /// The parabola is parameterised by chord length (points need not be equally spaced: some may be lost).
-std::optional<Eigen::Vector2d> end_parabola(const ViewPoints& v, const Eigen::Vector3d& l, bool at_base, double t_line) {
+std::optional<Eigen::Vector2d> end_parabola(const ViewPoints& v, const Eigen::Vector3d& l, bool at_base,
+                                            double t_line) {
   const std::size_t n = v.ideal.size();
   // Nodes at chord lengths 0, s1, s2 from point 0 (base end) or from point n - 3 (tip end).
   const std::array<std::size_t, 3> k = at_base ? std::array<std::size_t, 3>{0, 1, 2}
