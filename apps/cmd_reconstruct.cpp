@@ -2,6 +2,7 @@
 // two tracked views to a trial that `vibrissa trial` reads (docs/reconstruction.md).
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/recon/geometry.hpp"
 #include "vibrissa/recon/reconstruct.hpp"
+#include "vibrissa/recon/reconstruct_files.hpp"
 
 namespace vibrissa::cli {
 
@@ -34,13 +36,6 @@ std::vector<std::string> split_list(const std::string& s) {
   while (std::getline(ss, item, ','))
     if (!item.empty()) out.push_back(item);
   return out;
-}
-
-recon::Camera named_camera(const std::map<std::string, recon::Camera>& cams, const std::string& name,
-                           const std::string& path) {
-  auto it = cams.find(name);
-  if (it == cams.end()) throw std::invalid_argument(path + ": field 'cameras." + name + "': no camera of that name");
-  return it->second;
 }
 
 }  // namespace
@@ -67,7 +62,7 @@ void register_reconstruct(CLI::App& app) {
   cmd->add_option("--max-reprojection-px", opt.max_reprojection_px, "flag frames above this RMS reprojection error [px]")->capture_default_str();
   cmd->add_option("--contact-threshold-um", a->contact_threshold_um, "closest approach to an edge counted as contact [um]")->capture_default_str();
   cmd->add_option("--base-jump-um", a->base_jump_um, "flag frames whose base leaves the local median by more [um]")->capture_default_str();
-  cmd->add_option("--fit-degree", opt.fit_degree, "polynomial degree of the 3D curve")->capture_default_str();
+  cmd->add_option("--fit-segments", opt.fit_segments, "knot intervals of the cubic B-spline 3D curve")->capture_default_str();
   cmd->add_option("--nodes", opt.nodes, "segments of the written 3D shape")->capture_default_str();
   cmd->add_option("--report", a->report, "also write a JSON report (per-frame status, undeflected shapes)");
   cmd->callback([a] {
@@ -83,53 +78,22 @@ void register_reconstruct(CLI::App& app) {
     a->front_sel.bodyparts = a->top_sel.bodyparts;
     a->front_sel.identity = a->top_sel.identity;
     a->front_sel.individual = a->top_sel.individual;
-    const auto cams = recon::read_cameras_json(a->calibration);
-    const recon::Camera top_cam = named_camera(cams, a->top_camera, a->calibration);
-    const recon::Camera front_cam = named_camera(cams, a->front_camera, a->calibration);
-    const recon::Tracks2D top = recon::read_tracks(a->top, a->top_sel);
-    const recon::Tracks2D front = recon::read_tracks(a->front, a->front_sel);
-    std::size_t total = top.frames.size() + front.frames.size();
-    Progress progress("reconstructing frames", total);
+    recon::ReconstructFiles files{a->top, a->front, a->calibration, a->top_camera, a->front_camera, a->top_sel,
+                                  a->front_sel};
+    std::optional<Progress> progress;  // created at the first report, when the frame count is known
     std::size_t shown = 0;
     RunControl control;
     control.progress = [&](std::size_t done, std::size_t all) {
-      if (shown == 0) total = all;
-      progress.advance(done - shown);
+      if (!progress) progress.emplace("reconstructing frames", all);
+      progress->advance(done - shown);
       shown = done;
     };
-    const recon::Reconstruction rec = recon::reconstruct(top, top_cam, front, front_cam, o, control);
-    progress.finish();
-    const trial::Trial t = recon::to_trial(rec, o, {}, a->out);
-    io::write_trial(t, a->out);
-    std::size_t contact = 0;
-    for (auto c : t.contact) contact += c;
-    std::cout << "vibrissa reconstruct: " << rec.frames.size() << " frames, "
-              << rec.count(recon::FrameStatus::ok) << " reconstructed (" << contact << " in contact, "
-              << rec.undeflected.size() << " contact periods); flagged: "
-              << rec.count(recon::FrameStatus::missing_view) << " missing view, "
-              << rec.count(recon::FrameStatus::too_few_points) << " too few points, "
-              << rec.count(recon::FrameStatus::reprojection) << " reprojection, "
-              << rec.count(recon::FrameStatus::inconsistent_base) << " inconsistent base -> " << a->out << "\n";
-    if (!a->report.empty()) {
-      nlohmann::json j;
-      auto& frames = j["frames"];
-      frames = nlohmann::json::array();
-      for (const auto& f : rec.frames)
-        frames.push_back({{"frame", f.frame}, {"status", recon::frame_status_name(f.status)},
-                          {"points_used", f.points_used},
-                          {"reprojection_px", std::isfinite(f.reprojection_px) ? nlohmann::json(f.reprojection_px) : nlohmann::json()},
-                          {"approach_m", std::isfinite(f.approach) ? nlohmann::json(f.approach) : nlohmann::json()},
-                          {"contact_s_m", std::isfinite(f.contact_s) ? nlohmann::json(f.contact_s) : nlohmann::json()}});
-      auto& periods = j["contact_periods"];
-      periods = nlohmann::json::array();
-      for (const auto& u : rec.undeflected) {
-        nlohmann::json shape = nlohmann::json::array();
-        for (const auto& p : u.shape_W) shape.push_back({p.x(), p.y(), p.z()});
-        periods.push_back({{"first_frame", u.first_frame}, {"last_frame", u.last_frame},
-                           {"undeflected_from_frame", u.source_frame}, {"undeflected_shape_m", shape}});
-      }
-      io::write_json_file(a->report, j);
-    }
+    const recon::ReconstructedTrial result = recon::reconstruct_files(files, o, a->out, control);
+    if (progress) progress->finish();
+    io::write_trial(result.trial, a->out);
+    std::cout << "vibrissa reconstruct: " << recon::summary_line(result) << " -> " << a->out << "\n";
+    if (!a->report.empty())
+      io::write_json_file(a->report, nlohmann::json::parse(recon::report_json(result.reconstruction)));
   });
 }
 

@@ -145,6 +145,7 @@ def main():
     ap.add_argument("--duration", type=float, default=1.5)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--figure", default="")
+    ap.add_argument("--reconstruct-args", default="", help="extra options for vibrissa reconstruct, e.g. '--fit-segments 8'")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     syn = os.path.join(a.out, "synth.h5")
@@ -165,7 +166,7 @@ def main():
         rec_path = os.path.join(d, "reconstructed.h5")
         run([a.vibrissa, "reconstruct", "--top", os.path.join(d, "top.csv"), "--front",
              os.path.join(d, "front_dlc.csv"), "--calibration", cal, "--peg-mm", *[f"{v:.9g}" for v in peg_mm],
-             "-o", rec_path, "--report", os.path.join(d, "report.json")])
+             "-o", rec_path, "--report", os.path.join(d, "report.json"), *a.reconstruct_args.split()])
         rec = load(rec_path, names)
         row = evaluate(truth, rec, dropped, swapped)
         row["noise_px"] = sigma

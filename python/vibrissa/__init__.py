@@ -67,6 +67,7 @@ from .batch import (  # noqa: F401
     solve_point_batch,
 )
 from .inverse import BaseWrenchBatch, solve_base_wrench_batch  # noqa: F401
+from .recon import reconstruct  # noqa: F401
 from .case import case_from_dict, load_case, make_whisker, solve_case_file  # noqa: F401
 from .pipeline import (  # noqa: F401
     ArrayResult,
@@ -92,5 +93,5 @@ __all__ = [
     "solve_force", "solve_force_batch", "solve_frictional_edge", "solve_frictional_edge_batch", "solve_point",
     "solve_point_batch", "status_from_string", "write_result",
     "BaseWrenchBatch", "BaseWrenchIdentifiability", "BaseWrenchResult", "BaseWrenchRoot", "solve_base_wrench",
-    "solve_base_wrench_batch",
+    "solve_base_wrench_batch", "reconstruct",
 ]

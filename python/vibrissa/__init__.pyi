@@ -51,6 +51,7 @@ from .pipeline import ArrayResult as ArrayResult
 from .pipeline import Trial as Trial
 from .pipeline import TrialResult as TrialResult
 from .pipeline import analyze_trial as analyze_trial
+from .recon import reconstruct as reconstruct
 from .pipeline import default_array_config as default_array_config
 from .pipeline import read_trial as read_trial
 from .pipeline import simulate_array as simulate_array

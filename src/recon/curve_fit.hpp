@@ -1,7 +1,10 @@
 #pragma once
-// Smooth 3D curve through noisy points (private to src/recon): a polynomial in normalised chord length,
-// fitted by weighted least squares with Tukey biweights (iteratively reweighted), then resampled at equal arc
-// length with core/rest_curve.hpp.
+// Smooth 3D curve through noisy points (private to src/recon): a clamped cubic B-spline with `segments` equal
+// knot intervals of a curve parameter (chord length, corrected to the foot points), fitted by penalised
+// weighted least squares (third differences of the coefficients, weight by generalised cross-validation with
+// the trace counted twice) with Tukey biweights (iteratively reweighted), then resampled at equal arc length
+// with core/rest_curve.hpp. Unlike one global polynomial, the spline is local: the jump in the curvature's
+// derivative at a contact point does not tilt the base tangent.
 #include <optional>
 #include <vector>
 
@@ -13,8 +16,8 @@ struct FittedCurve {
   std::vector<Eigen::Vector3d> nodes;  ///< nodes + 1 points equally spaced in arc length, base first
   Eigen::Vector3d tangent0;            ///< unit tangent at the base
 };
-/// nullopt when fewer than degree + 2 points carry weight.
+/// nullopt when fewer than segments + 4 points carry weight (the points must be ordered base to tip).
 std::optional<FittedCurve> fit_curve(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& weights,
-                                     int degree, int nodes);
+                                     int segments, int nodes);
 
 }  // namespace vibrissa::recon

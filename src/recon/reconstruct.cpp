@@ -1,9 +1,11 @@
 #include "vibrissa/recon/reconstruct.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "curve_fit.hpp"
@@ -44,53 +46,97 @@ ViewPoints usable_points(const TrackFrame& f, const Camera& cam, double min_like
 }
 
 struct Match {
-  std::size_t top;          ///< index into the top points
-  Eigen::Vector2d front_px; ///< matched front pixel (measured)
-  double front_arc;         ///< its relative arc length in the front view
-  double front_likelihood;
+  std::size_t own;          ///< index into the points of the view whose epipolar lines are drawn
+  Eigen::Vector2d other_px; ///< the matched pixel on the other view's polyline (measured pixels)
+  double own_arc, other_arc;  ///< relative arc lengths in both views
+  double other_likelihood;
 };
 
-/// For each top point, the front-polyline intersection of its epipolar line nearest the same relative arc
-/// length (gated), then the longest run monotonic in front arc length.
-std::vector<Match> match_views(const ViewPoints& top, const ViewPoints& front, const Eigen::Matrix3d& F) {
+/// Where the epipolar line `l` (unit normal, ideal pixels) crosses the parabola through the three end points of
+/// a view beyond its base (`at_base`) or tip, near the straight extension's parameter `t_line` (in units of
+/// the end segment): the measured pixel there, or nullopt when the line misses the parabola beyond the end.
+/// The parabola is parameterised by chord length (points need not be equally spaced: some may be lost).
+std::optional<Eigen::Vector2d> end_parabola(const ViewPoints& v, const Eigen::Vector3d& l, bool at_base,
+                                            double t_line) {
+  const std::size_t n = v.ideal.size();
+  // Nodes at chord lengths 0, s1, s2 from point 0 (base end) or from point n - 3 (tip end).
+  const std::array<std::size_t, 3> k = at_base ? std::array<std::size_t, 3>{0, 1, 2}
+                                               : std::array<std::size_t, 3>{n - 3, n - 2, n - 1};
+  const double s1 = (v.ideal[k[1]] - v.ideal[k[0]]).norm(), s2 = s1 + (v.ideal[k[2]] - v.ideal[k[1]]).norm();
+  if (!(s1 > 0.0 && s2 > s1)) return std::nullopt;
+  const double sigma_line = at_base ? t_line * s1 : s1 + t_line * (s2 - s1);
+  // Newton form: f(sigma) = f0 + sigma f01 + sigma (sigma - s1) f012.
+  const auto newton = [&](const Eigen::Vector2d& f0, const Eigen::Vector2d& f1, const Eigen::Vector2d& f2,
+                          double sigma) -> Eigen::Vector2d {
+    const Eigen::Vector2d f01 = (f1 - f0) / s1;
+    const Eigen::Vector2d f012 = ((f2 - f1) / (s2 - s1) - f01) / s2;
+    return f0 + sigma * f01 + sigma * (sigma - s1) * f012;
+  };
+  std::array<double, 3> d{};
+  for (std::size_t m = 0; m < 3; ++m) d[m] = l.dot(v.ideal[k[m]].homogeneous());
+  const double f01 = (d[1] - d[0]) / s1, f012 = ((d[2] - d[1]) / (s2 - s1) - f01) / s2;
+  const double a = f012, b = f01 - s1 * f012, c = d[0];  // a sigma^2 + b sigma + c
+  double sigma = 0.0;
+  if (std::abs(a) * s2 * s2 <= 1e-12 * (std::abs(b) * s2 + std::abs(c))) {
+    if (b == 0.0) return std::nullopt;
+    sigma = -c / b;
+  } else {
+    const double disc = b * b - 4.0 * a * c;
+    if (disc < 0.0) return std::nullopt;
+    const double r1 = (-b + std::sqrt(disc)) / (2.0 * a), r2 = (-b - std::sqrt(disc)) / (2.0 * a);
+    sigma = std::abs(r1 - sigma_line) < std::abs(r2 - sigma_line) ? r1 : r2;
+  }
+  if (at_base ? sigma > 0.0 : sigma < s2) return std::nullopt;  // not beyond the end
+  return newton(v.px[k[0]], v.px[k[1]], v.px[k[2]], sigma);
+}
+
+/// For each point of `own`, the intersection of its epipolar line (F * x_own) with the `other` polyline
+/// nearest the same relative arc length (gated), then the longest run monotonic in the other view's arc
+/// length. Beyond its ends, `other` is extended by up to `end_extension` tracked spacings along the parabola
+/// through its three end points: a base (or tip) point lost in the other view is then still matched.
+std::vector<Match> match_views(const ViewPoints& own, const ViewPoints& other, const Eigen::Matrix3d& F) {
   constexpr double min_sine = 0.05;  // epipolar line nearly tangent to the curve: position undetermined
   constexpr double arc_gate = 0.35;  // relative arc lengths of the two views differ by foreshortening
-  constexpr double end_extension = 0.5;
+  constexpr double end_extension = 2.5;  // [segments]: up to two lost end points
   std::vector<Match> candidates;
-  for (std::size_t i = 0; i < top.ideal.size(); ++i) {
-    Eigen::Vector3d l = F * top.ideal[i].homogeneous();
+  for (std::size_t i = 0; i < own.ideal.size(); ++i) {
+    Eigen::Vector3d l = F * own.ideal[i].homogeneous();
     const double norm = l.head<2>().norm();
     if (!(norm > 0.0)) continue;
     l /= norm;  // l . x = signed distance [px]
     std::optional<Match> best;
     double best_gap = arc_gate;
-    for (std::size_t j = 0; j + 1 < front.ideal.size(); ++j) {
-      const double d0 = l.dot(front.ideal[j].homogeneous()), d1 = l.dot(front.ideal[j + 1].homogeneous());
+    for (std::size_t j = 0; j + 1 < other.ideal.size(); ++j) {
+      const double d0 = l.dot(other.ideal[j].homogeneous()), d1 = l.dot(other.ideal[j + 1].homogeneous());
       if (d0 == d1) continue;
-      const double seg = (front.ideal[j + 1] - front.ideal[j]).norm();
+      const double seg = (other.ideal[j + 1] - other.ideal[j]).norm();
       if (!(std::abs(d0 - d1) > min_sine * seg)) continue;
       const double t = d0 / (d0 - d1);
-      // The end segments extend by half their length: with pixel noise the epipolar line of the base (or tip)
-      // point passes just beyond the other view's end point.
       const double t_min = j == 0 ? -end_extension : 0.0;
-      const double t_max = j + 2 == front.ideal.size() ? 1.0 + end_extension : 1.0;
+      const double t_max = j + 2 == other.ideal.size() ? 1.0 + end_extension : 1.0;
       if (t < t_min || t > t_max) continue;
-      const double arc = front.arc[j] + t * (front.arc[j + 1] - front.arc[j]);
-      const double gap = std::abs(arc - top.arc[i]);
+      const double arc = other.arc[j] + t * (other.arc[j + 1] - other.arc[j]);
+      const double gap = std::abs(arc - own.arc[i]);
       if (gap >= best_gap) continue;
+      Eigen::Vector2d px = other.px[j] + t * (other.px[j + 1] - other.px[j]);
+      if ((t < 0.0 || t > 1.0) && other.ideal.size() >= 3) {
+        const auto q = end_parabola(other, l, t < 0.0, t);
+        if (!q) continue;
+        px = *q;
+      }
       best_gap = gap;
-      best = Match{i, front.px[j] + t * (front.px[j + 1] - front.px[j]), arc,
-                   front.likelihood[j] + t * (front.likelihood[j + 1] - front.likelihood[j])};
+      const double tl = std::clamp(t, 0.0, 1.0);
+      best = Match{i, px, own.arc[i], arc, other.likelihood[j] + tl * (other.likelihood[j + 1] - other.likelihood[j])};
     }
     if (best) candidates.push_back(*best);
   }
-  // Longest subsequence increasing in front arc length (O(n^2); n is a few hundred at most).
+  // Longest subsequence increasing in the other view's arc length (O(n^2); n is a few hundred at most).
   const std::size_t n = candidates.size();
   std::vector<std::size_t> len(n, 1), prev(n, n);
   std::size_t end = 0;
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < i; ++j)
-      if (candidates[j].front_arc < candidates[i].front_arc && len[j] + 1 > len[i]) {
+      if (candidates[j].other_arc < candidates[i].other_arc && len[j] + 1 > len[i]) {
         len[i] = len[j] + 1;
         prev[i] = j;
       }
@@ -121,7 +167,7 @@ void closest_approach(ReconstructedFrame& f, const std::vector<Edge>& edges, dou
       if (dist < best) {
         best = dist;
         s_along = s0 + s * std::sqrt(uu);
-        f.contact_W = q;
+        f.contact_W = e.point + d.dot(q - e.point) * d;  // on the edge, where the object is touched
       }
       s0 += std::sqrt(uu);
     }
@@ -142,15 +188,40 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const TrackFrame* top, 
   const ViewPoints b = usable_points(*front, front_cam, o.min_likelihood);
   f.status = FrameStatus::too_few_points;
   if (a.px.size() < 2 || b.px.size() < 2) return f;
-  const std::vector<Match> matches = match_views(a, b, F);
+  // Match both ways (top points on the front polyline and front points on the top polyline), so that a
+  // point lost in one view (e.g. the base) is still reconstructed from the other; order along the whisker.
+  struct Point3 {
+    double arc;  ///< mean relative arc length of the two views (orders the points base to tip)
+    Eigen::Vector3d p_W;
+    double error_px, likelihood;
+  };
+  std::vector<Point3> found;
+  double first_arc = std::numeric_limits<double>::infinity(), last_arc = -first_arc;  // of the top matches
+  for (const bool from_top : {true, false}) {
+    const ViewPoints& own = from_top ? a : b;
+    for (const Match& m : match_views(own, from_top ? b : a, from_top ? F : Eigen::Matrix3d(F.transpose()))) {
+      const double arc = 0.5 * (m.own_arc + m.other_arc);
+      // Front points only beyond the ends of the top matches: inside, they would repeat the same stretch with
+      // pixel errors shared with the top matches (correlated residuals make the fit follow the noise).
+      if (!from_top && arc >= first_arc && arc <= last_arc) continue;
+      const Eigen::Vector2d top_px = from_top ? own.px[m.own] : m.other_px;
+      const Eigen::Vector2d front_px = from_top ? m.other_px : own.px[m.own];
+      const Triangulated t = triangulate({&top_cam, &front_cam}, {top_px, front_px});
+      if (!t.ok) continue;
+      found.push_back({arc, t.p_W, t.reprojection_px, std::sqrt(own.likelihood[m.own] * m.other_likelihood)});
+      if (from_top) {
+        first_arc = std::min(first_arc, arc);
+        last_arc = std::max(last_arc, arc);
+      }
+    }
+  }
+  std::stable_sort(found.begin(), found.end(), [](const Point3& x, const Point3& y) { return x.arc < y.arc; });
   std::vector<Eigen::Vector3d> pts;
   std::vector<double> err, like;
-  for (const Match& m : matches) {
-    const Triangulated t = triangulate({&top_cam, &front_cam}, {a.px[m.top], m.front_px});
-    if (!t.ok) continue;
-    pts.push_back(t.p_W);
-    err.push_back(t.reprojection_px);
-    like.push_back(std::sqrt(a.likelihood[m.top] * m.front_likelihood));
+  for (const Point3& p : found) {
+    pts.push_back(p.p_W);
+    err.push_back(p.error_px);
+    like.push_back(p.likelihood);
   }
   if (pts.size() < std::size_t(o.min_points)) return f;
   const double gate = std::max(o.outlier_px, 3.0 * median_of(err));
@@ -172,9 +243,19 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const TrackFrame* top, 
     f.status = FrameStatus::reprojection;
     return f;
   }
-  const auto curve = fit_curve(kept, weights, std::min(o.fit_degree, int(kept.size()) - 2), o.nodes);
+  const auto curve = fit_curve(kept, weights, std::min(o.fit_segments, int(kept.size()) - 4), o.nodes);
   if (!curve) return f;
-  const Pose pose = pose_from_rotation(whisker_frame(curve->nodes, curve->tangent0), curve->nodes.front());
+  // theta and phi are the direction of the base tangent (the rigid base, spec §2.2). whisker_frame projects the
+  // tangent into the best-fit plane of the proximal shape: the same for an undeflected (planar) whisker, but
+  // a deflected one leaves that plane and the projection tilts by about 1 degree. So x = the tangent, and the
+  // plane only fixes the roll about it.
+  Eigen::Matrix3d R_WB = whisker_frame(curve->nodes, curve->tangent0);
+  const Eigen::Vector3d x = curve->tangent0;
+  const Eigen::Vector3d z = (R_WB.col(2) - R_WB.col(2).dot(x) * x).normalized();
+  R_WB.col(0) = x;
+  R_WB.col(1) = z.cross(x);
+  R_WB.col(2) = z;
+  const Pose pose = pose_from_rotation(R_WB, curve->nodes.front());
   f.status = FrameStatus::ok;
   f.shape_W = curve->nodes;
   f.base_W = pose.p_W_base;
@@ -227,7 +308,7 @@ void ReconstructOptions::validate() const {
   require(min_points >= 3, "min_points", min_points, ">= 3");
   require(max_reprojection_px > 0.0, "max_reprojection_px", max_reprojection_px, "> 0");
   require(outlier_px > 0.0, "outlier_px", outlier_px, "> 0");
-  require(fit_degree >= 1 && fit_degree <= 9, "fit_degree", fit_degree, "in [1, 9]");
+  require(fit_segments >= 1 && fit_segments <= 50, "fit_segments", fit_segments, "in [1, 50]");
   require(nodes >= 2, "nodes", nodes, ">= 2");
   require(contact_threshold > 0.0 && std::isfinite(contact_threshold), "contact_threshold", contact_threshold, "> 0");
   require(base_jump > 0.0, "base_jump", base_jump, "> 0");
@@ -288,12 +369,25 @@ Reconstruction reconstruct(const Tracks2D& top, const Camera& top_camera, const 
     UndeflectedShape u;
     u.first_frame = f.frame;
     u.last_frame = rec.frames[good[last]].frame;
-    if (g > 0) {
-      u.source_frame = rec.frames[good[g - 1]].frame;
-      u.shape_W = rec.frames[good[g - 1]].shape_W;
-    } else if (last + 1 < good.size()) {
-      u.source_frame = rec.frames[good[last + 1]].frame;
-      u.shape_W = rec.frames[good[last + 1]].shape_W;
+    // The free stretch before the period (else after it): every free frame up to the neighbouring period.
+    std::vector<std::size_t> stretch;
+    for (std::size_t k = g; k-- > 0 && !rec.frames[good[k]].contact;) stretch.push_back(good[k]);
+    for (std::size_t k = last + 1; stretch.empty() && k < good.size() && !rec.frames[good[k]].contact; ++k)
+      stretch.push_back(good[k]);
+    if (!stretch.empty()) {
+      // Mean of the stretch's shapes in their own whisker frames (a free whisker keeps its shape; one frame
+      // alone carries the full pixel noise), placed at the pose of the free frame nearest the period.
+      const ReconstructedFrame& src = rec.frames[stretch.front()];
+      std::vector<Eigen::Vector3d> mean_B(src.shape_W.size(), Eigen::Vector3d::Zero());
+      for (std::size_t i : stretch) {
+        const ReconstructedFrame& fr = rec.frames[i];
+        const Placement X(Pose{fr.base_W, fr.theta, fr.phi, fr.zeta});
+        for (std::size_t k = 0; k < mean_B.size(); ++k) mean_B[k] += X.R_WB.transpose() * (fr.shape_W[k] - fr.base_W);
+      }
+      const Placement X_src(Pose{src.base_W, src.theta, src.phi, src.zeta});
+      for (const auto& p_B : mean_B) u.shape_W.push_back(src.base_W + X_src.R_WB * (p_B / double(stretch.size())));
+      u.source_frame = src.frame;
+      u.frames_averaged = stretch.size();
     }
     rec.undeflected.push_back(std::move(u));
   }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -99,7 +100,7 @@ TEST(Reconstruct, FlagsMissingLowLikelihoodAndSwappedFramesWithoutInventingValue
   EXPECT_EQ(trial::reconstructed_frames_only(t).frames(), 37u);
 }
 
-TEST(Reconstruct, ContactWithAPegGivesThePointNearestTheEdgeAndItsArcLength) {
+TEST(Reconstruct, ContactPointLiesOnTheEdgeWithTheWhiskerArcLength) {
   const Camera top = test_support::top_test_camera(), front = test_support::front_test_camera();
   const Pose pose = pose_at(0);
   const auto pts = whisker_points(pose, 200);
@@ -115,12 +116,97 @@ TEST(Reconstruct, ContactWithAPegGivesThePointNearestTheEdgeAndItsArcLength) {
   ASSERT_TRUE(rec.frames[0].ok());
   EXPECT_TRUE(rec.frames[0].contact);
   EXPECT_LT(rec.frames[0].approach, 1e-6);
-  // The whisker and a vertical line through one of its points: the closest point is that point.
-  EXPECT_LT((rec.frames[0].contact_W - on).norm(), 20e-6);
+  // The whisker and a vertical line through one of its points: the contact point is that point (on the edge).
+  EXPECT_LT((rec.frames[0].contact_W - on).norm(), 1e-6);
   const double s = (std::asinh(16.0 * 0.02) + 16.0 * 0.02 * std::sqrt(1.0 + std::pow(16.0 * 0.02, 2))) / 32.0;
   EXPECT_NEAR(rec.frames[0].contact_s, s, 20e-6);
+  // A peg 0.2 mm beside the whisker (still contact): the contact point is the point of the peg's axis
+  // nearest the whisker (the trial format's contact point is on the object).
+  const Eigen::Vector3d beside = X.to_world(Eigen::Vector3d(0.02, 8.0 * 0.02 * 0.02 + 0.0002, 0.0));
+  o.edges[0].point = beside + Eigen::Vector3d(0.0, 0.0, 0.004);
+  const ReconstructedFrame g = reconstruct(a, top, b, front, o).frames[0];
+  ASSERT_TRUE(g.contact);
+  EXPECT_GT(g.approach, 100e-6);
+  EXPECT_NEAR(g.contact_W.x(), beside.x(), 1e-12);
+  EXPECT_NEAR(g.contact_W.y(), beside.y(), 1e-12);
+  double nearest = 1.0;  // distance from the contact point to the reconstructed whisker = closest approach
+  for (std::size_t k = 0; k + 1 < g.shape_W.size(); ++k) {
+    const Eigen::Vector3d u = g.shape_W[k + 1] - g.shape_W[k];
+    const double t = std::clamp((g.contact_W - g.shape_W[k]).dot(u) / u.squaredNorm(), 0.0, 1.0);
+    nearest = std::min(nearest, (g.shape_W[k] + t * u - g.contact_W).norm());
+  }
+  EXPECT_NEAR(nearest, g.approach, 1e-9);
+  o.edges[0].point = on;
   o.edges[0].point += Eigen::Vector3d(0.0, 0.001, 0.0);  // 1 mm away: no contact
   EXPECT_FALSE(reconstruct(a, top, b, front, o).frames[0].contact);
+}
+
+TEST(Reconstruct, BasePointLostInOneViewIsRecoveredFromTheOtherNotFlagged) {
+  const Camera top = test_support::top_test_camera(), front = test_support::front_test_camera();
+  Tracks2D a, b;
+  for (int i = 0; i < 20; ++i) {
+    const auto pts = whisker_points(pose_at(0), 25);
+    a.frames.push_back(view(i, top, pts));
+    b.frames.push_back(view(i, front, pts));
+    if (i == 4) a.frames.back().likelihood[0] = 0.1;  // the tracker lost the base in the top view
+    if (i == 6) b.frames.back().likelihood[0] = 0.1;  // ... in the front view
+    if (i == 8) a.frames.back().likelihood[0] = a.frames.back().likelihood[3] = 0.1;  // unequal spacing left
+    if (i == 10) b.frames.back().likelihood[0] = b.frames.back().likelihood[1] = 0.1;  // two end points lost
+  }
+  const Reconstruction rec = reconstruct(a, top, b, front, ReconstructOptions{});
+  EXPECT_EQ(rec.count(FrameStatus::ok), 20u);
+  for (std::size_t i : {4u, 6u, 8u, 10u}) {
+    ASSERT_TRUE(rec.frames[i].ok()) << frame_status_name(rec.frames[i].status);
+    EXPECT_LT((rec.frames[i].base_W - pose_at(0).p_W_base).norm(), 10e-6);
+    EXPECT_NEAR(rec.frames[i].theta, pose_at(0).theta, 0.1 * deg);
+  }
+}
+
+TEST(Reconstruct, BaseAnglesOfADeflectedShapeIgnoreTheCurvatureKinkAtContact) {
+  // y = 8 x^2 + 500 (x - 18 mm)^3 beyond 18 mm (0.86 mm at the tip): the derivative of the curvature jumps
+  // there, as at a contact point (the shear force ends); the base tangent (theta, phi) must not tilt.
+  const Camera top = test_support::top_test_camera(-0.1, 0.02), front = test_support::front_test_camera(0.05, 0.0);
+  const Pose pose = pose_at(2);
+  const Placement X(pose);
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = 0; i < 25; ++i) {
+    const double x = 0.03 * i / 24.0, k = std::max(0.0, x - 0.018);
+    pts.push_back(X.to_world(Eigen::Vector3d(x, 8.0 * x * x + 500.0 * k * k * k, 0.0)));
+  }
+  Tracks2D a, b;
+  a.frames.push_back(view(0, top, pts));
+  b.frames.push_back(view(0, front, pts));
+  const ReconstructedFrame f = reconstruct(a, top, b, front, ReconstructOptions{}).frames[0];
+  ASSERT_TRUE(f.ok());
+  EXPECT_LT((f.base_W - pose.p_W_base).norm(), 2e-6);
+  EXPECT_NEAR(f.theta, pose.theta, 0.1 * deg);
+  EXPECT_NEAR(f.phi, pose.phi, 0.1 * deg);
+}
+
+TEST(Reconstruct, UndeflectedShapeIsTheMeanOfTheFreeStretchPlacedAtItsLastFrame) {
+  const Camera top = test_support::top_test_camera(), front = test_support::front_test_camera();
+  Tracks2D a, b;
+  for (int i = 0; i < 15; ++i) {  // free while whisking (theta grows 3 degrees a frame), then held on a peg
+    const auto pts = whisker_points(pose_at(std::min(i, 12)), 25);
+    a.frames.push_back(view(i, top, pts));
+    b.frames.push_back(view(i, front, pts));
+  }
+  ReconstructOptions o;
+  o.edges.push_back({Placement(pose_at(12)).to_world(Eigen::Vector3d(0.02, 8.0 * 0.02 * 0.02, 0.0)),
+                     Eigen::Vector3d::UnitZ()});
+  const Reconstruction rec = reconstruct(a, top, b, front, o);
+  ASSERT_EQ(rec.count(FrameStatus::ok), 15u);
+  for (int i = 0; i < 15; ++i) EXPECT_EQ(rec.frames[std::size_t(i)].contact, i >= 12) << i;
+  ASSERT_EQ(rec.undeflected.size(), 1u);
+  const UndeflectedShape& u = rec.undeflected[0];
+  EXPECT_EQ(u.first_frame, 12);
+  EXPECT_EQ(u.last_frame, 14);
+  EXPECT_EQ(u.source_frame, 11);
+  EXPECT_EQ(u.frames_averaged, 12u);
+  // Every free frame has the same intrinsic shape: the mean, placed at frame 11, is frame 11's shape.
+  ASSERT_EQ(u.shape_W.size(), rec.frames[11].shape_W.size());
+  for (std::size_t k = 0; k < u.shape_W.size(); ++k)
+    EXPECT_LT((u.shape_W[k] - rec.frames[11].shape_W[k]).norm(), 1e-6);
 }
 
 TEST(Reconstruct, RejectsInvalidOptionsNamingTheField) {

@@ -2,10 +2,10 @@
 // From two tracked views to 3D whiskers and a trial (docs/reconstruction.md). Per frame: drop points below
 // the likelihood threshold, match the top-view points to the front-view polyline by the epipolar constraint
 // (the intersection nearest the same relative arc length, kept monotonic along the whisker), triangulate,
-// reject reprojection outliers, fit a smooth 3D curve (polynomial in chord length, Tukey-weighted IRLS, weights
-// = likelihoods), resample it, and read base point, theta/phi/zeta (core/rest_curve.hpp whisker_frame,
-// core/pose.hpp) and the closest approach to the object's edges. Frames that fail are flagged with a status
-// and carry NaN, never invented values.
+// reject reprojection outliers, fit a smooth 3D curve (cubic B-spline, Tukey-weighted IRLS, weights
+// = likelihoods), resample it, and read base point, theta/phi (base tangent), zeta (core/rest_curve.hpp
+// whisker_frame, core/pose.hpp) and the closest approach to the object's edges. Frames that fail are flagged
+// with a status and carry NaN, never invented values.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,7 +25,7 @@ struct ReconstructOptions {
   int min_points = 6;                 ///< matched points needed per frame
   double max_reprojection_px = 2.0;   ///< frame flagged when the RMS reprojection error exceeds this [px]
   double outlier_px = 4.0;            ///< points whose reprojection error exceeds max(this, 3 median) are dropped
-  int fit_degree = 5;                 ///< polynomial degree of the 3D curve
+  int fit_segments = 6;               ///< knot intervals of the cubic B-spline 3D curve
   int nodes = 40;                     ///< points of the reconstructed shape (nodes + 1 written)
   double contact_threshold = 0.3e-3;  ///< closest approach to an edge counted as contact [m]
   double base_jump = 1.0e-3;          ///< base farther than this from the local median base is flagged [m]
@@ -54,18 +54,20 @@ struct ReconstructedFrame {
   double theta, phi, zeta;  ///< [rad], NaN unless ok
   std::vector<Eigen::Vector3d> shape_W;  ///< base first; empty unless ok
   bool contact = false;
-  Eigen::Vector3d contact_W;  ///< point of the whisker nearest the edge (contact frames), else NaN
+  Eigen::Vector3d contact_W;  ///< point of the edge nearest the whisker (contact frames), else NaN
   double contact_s = 0.0;     ///< its arc length from the base [m] (NaN outside contact)
   double approach = 0.0;      ///< closest distance to the edges [m] (NaN without edges or when not ok)
   ReconstructedFrame();
   [[nodiscard]] bool ok() const { return status == FrameStatus::ok; }
 };
 
-/// The undeflected shape of one contact period: the shape of the last free (ok, no contact) frame before it,
-/// else of the first free frame after it.
+/// The undeflected shape of one contact period: the mean, in each frame's whisker frame, of the shapes of the
+/// free (ok, no contact) frames between the previous period and this one (else between it and the next),
+/// placed at the pose of the free frame nearest the period.
 struct UndeflectedShape {
   std::int64_t first_frame = 0, last_frame = 0;  ///< the contact period
-  std::int64_t source_frame = -1;                ///< the free frame the shape comes from (-1: none)
+  std::int64_t source_frame = -1;                ///< the free frame whose pose places the shape (-1: none)
+  std::size_t frames_averaged = 0;               ///< free frames in the mean
   std::vector<Eigen::Vector3d> shape_W;
 };
 

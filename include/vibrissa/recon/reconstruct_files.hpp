@@ -1,0 +1,37 @@
+#pragma once
+// `vibrissa reconstruct` as one library call (docs/reconstruction.md), shared by the CLI and the Python
+// binding (vibrissa.reconstruct): read the calibration and both views' tracks, reconstruct every frame, build
+// the trial, and describe the result as the report JSON text.
+#include <string>
+
+#include "vibrissa/core/run_control.hpp"
+#include "vibrissa/recon/reconstruct.hpp"
+#include "vibrissa/recon/tracks.hpp"
+#include "vibrissa/trial/format.hpp"
+
+namespace vibrissa::recon {
+
+struct ReconstructFiles {
+  std::string top, front;     ///< track files (read_tracks formats)
+  std::string calibration;    ///< cameras JSON (read_cameras_json)
+  std::string top_camera = "top", front_camera = "front";  ///< names in the calibration
+  TrackSelection top_selection, front_selection;
+};
+
+struct ReconstructedTrial {
+  Reconstruction reconstruction;
+  trial::Trial trial;  ///< to_trial(reconstruction, options, {}, source)
+};
+
+/// Reads, reconstructs and builds the trial; progress and cancellation per frame. Errors name the file.
+ReconstructedTrial reconstruct_files(const ReconstructFiles& files, const ReconstructOptions& options,
+                                     const std::string& source, const RunControl& control = {});
+
+/// The `--report` JSON text: per frame (status, points used, reprojection, closest approach, contact arc
+/// length) and per contact period (undeflected shape and where it comes from).
+std::string report_json(const Reconstruction& reconstruction, int indent = 1);
+
+/// One line: frames, reconstructed, in contact, periods and the flagged counts.
+std::string summary_line(const ReconstructedTrial& result);
+
+}  // namespace vibrissa::recon

@@ -1,0 +1,80 @@
+// Reconstruction from Python (docs/python.md, "Reconstruction"): vibrissa.reconstruct runs the library call of
+// `vibrissa reconstruct` (recon::reconstruct_files) through run_interruptible (GIL released, Ctrl-C,
+// progress), so Python and the CLI give the same trial.
+#include <cmath>
+#include <stdexcept>
+
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "interruptible.hpp"
+#include "vibrissa/recon/reconstruct_files.hpp"
+
+namespace vibrissa::python {
+
+namespace {
+
+/// (k, 3) points [m] or (k, 6) point + direction rows; a single row may be given flat.
+std::vector<Edge> edges_arg(const py::object& obj, const char* name, bool vertical) {
+  std::vector<Edge> out;
+  if (obj.is_none()) return out;
+  const std::size_t width = vertical ? 3 : 6;
+  const DoubleArray a = as_double_array(obj, name);
+  const bool flat = a.ndim() == 1 && a.shape(0) == py::ssize_t(width);
+  if (!flat && !(a.ndim() == 2 && a.shape(1) == py::ssize_t(width)))
+    throw py::value_error(std::string(name) + " must have shape (" + std::to_string(width) + ",) or (k, " +
+                          std::to_string(width) + ") [m], got " + shape_string(a));
+  const py::ssize_t rows = flat ? 1 : a.shape(0);
+  const double* p = a.data();
+  for (py::ssize_t r = 0; r < rows; ++r, p += width) {
+    Edge e;
+    e.point = Eigen::Vector3d(p[0], p[1], p[2]);
+    e.direction = vertical ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(p[3], p[4], p[5]);
+    out.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace
+
+void bind_recon(py::module_& m) {
+  m.def(
+      "_reconstruct",
+      [](const std::string& top, const std::string& front, const std::string& calibration, const py::object& peg,
+         const py::object& edge, const std::string& top_camera, const std::string& front_camera,
+         const std::vector<std::string>& bodyparts, const std::string& individual, int whisker_id,
+         const std::string& top_measurements, const std::string& front_measurements, double min_likelihood,
+         double max_reprojection_px, double contact_threshold, double base_jump, int fit_segments, int nodes,
+         double frame_rate, const std::string& source, const py::object& progress) {
+        recon::ReconstructOptions o;
+        o.edges = edges_arg(peg, "peg", true);
+        for (const Edge& e : edges_arg(edge, "edge", false)) o.edges.push_back(e);
+        o.min_likelihood = min_likelihood;
+        o.max_reprojection_px = max_reprojection_px;
+        o.contact_threshold = contact_threshold;
+        o.base_jump = base_jump;
+        o.fit_segments = fit_segments;
+        o.nodes = nodes;
+        o.frame_rate = frame_rate;
+        o.validate();
+        recon::ReconstructFiles files;
+        files.top = top;
+        files.front = front;
+        files.calibration = calibration;
+        files.top_camera = top_camera;
+        files.front_camera = front_camera;
+        files.top_selection = {top_measurements, whisker_id, bodyparts, individual};
+        files.front_selection = {front_measurements, whisker_id, bodyparts, individual};
+        recon::ReconstructedTrial r = run_interruptible(
+            [&](const RunControl& control) { return recon::reconstruct_files(files, o, source, control); }, progress);
+        return py::make_tuple(std::move(r.trial), recon::report_json(r.reconstruction, -1));
+      },
+      py::arg("top"), py::arg("front"), py::arg("calibration"), py::arg("peg"), py::arg("edge"),
+      py::arg("top_camera"), py::arg("front_camera"), py::arg("bodyparts"), py::arg("individual"),
+      py::arg("whisker_id"), py::arg("top_measurements"), py::arg("front_measurements"), py::arg("min_likelihood"),
+      py::arg("max_reprojection_px"), py::arg("contact_threshold"), py::arg("base_jump"), py::arg("fit_segments"),
+      py::arg("nodes"), py::arg("frame_rate"), py::arg("source"), py::arg("progress"));
+}
+
+}  // namespace vibrissa::python

@@ -1,0 +1,58 @@
+"""vibrissa.reconstruct (docs/python.md, "Reconstruction") is `vibrissa reconstruct`: the same files and
+options give the same trial, value for value; flagged frames stay flagged; progress counts frames."""
+
+import json
+import subprocess
+
+import numpy as np
+
+import vibrissa
+
+K = np.array([[2400.0, 0.0, 320.0], [0.0, 2400.0, 240.0], [0.0, 0.0, 1.0]])
+CAMERAS = {"top": (np.diag([1.0, -1.0, -1.0]), np.array([0.015, 0.01, 0.3])),
+           "front": (np.array([[1.0, 0, 0], [0, 0, -1], [0, 1, 0]]), np.array([0.015, -0.3, 0.0]))}
+
+
+def write_views(tmp_path, frames=12):
+    """A 30 mm whisker y = 8 x^2 whisking about z, seen by two pinhole cameras; frame 5 lacks the front view."""
+    cal = {"length_unit": "m", "cameras": {name: {"model": "pinhole", "K": K.tolist(), "R": R.tolist(),
+                                                  "t": (-R @ C).tolist()} for name, (R, C) in CAMERAS.items()}}
+    (tmp_path / "cams.json").write_text(json.dumps(cal))
+    x = np.linspace(0.0, 0.03, 25)
+    rows = {"top": ["frame,point,x_px,y_px"], "front": ["frame,point,x_px,y_px"]}
+    for i in range(frames):
+        th = np.radians(5.0 + 2.0 * i)
+        pts = np.stack([x * np.cos(th) - 8 * x**2 * np.sin(th), x * np.sin(th) + 8 * x**2 * np.cos(th), 0 * x], 1)
+        for name, (R, C) in CAMERAS.items():
+            if name == "front" and i == 5:
+                continue
+            pc = (pts - C) @ R.T
+            px = (pc[:, :2] / pc[:, 2:]) @ K[:2, :2].T + K[:2, 2]
+            rows[name] += [f"{i},{k},{u:.6f},{v:.6f}" for k, (u, v) in enumerate(px)]
+    for name, lines in rows.items():
+        (tmp_path / f"{name}.csv").write_text("\n".join(lines) + "\n")
+
+
+def test_python_and_cli_give_the_same_trial(cli, tmp_path):
+    write_views(tmp_path)
+    th = np.radians(5.0 + 2.0 * 8)  # a peg through the whisker's point at x = 20 mm in frame 8
+    peg = [0.02 * np.cos(th) - 8 * 0.02**2 * np.sin(th), 0.02 * np.sin(th) + 8 * 0.02**2 * np.cos(th), 0.0]
+    subprocess.run([cli, "reconstruct", "--top", str(tmp_path / "top.csv"), "--front", str(tmp_path / "front.csv"),
+                    "--calibration", str(tmp_path / "cams.json"), "--peg-mm", *[repr(v * 1e3) for v in peg],
+                    "-o", str(tmp_path / "cli.h5"), "--report", str(tmp_path / "cli.json")],
+                   check=True, capture_output=True)
+    seen = []
+    trial, report = vibrissa.reconstruct(tmp_path / "top.csv", tmp_path / "front.csv", tmp_path / "cams.json",
+                                         peg=peg, progress=lambda done, total: seen.append((done, total)))
+    from_cli = vibrissa.read_trial(str(tmp_path / "cli.h5"))
+    assert len(trial) == len(from_cli) == 12
+    for name in ("time", "base_W", "theta", "phi", "zeta", "contact", "contact_W", "shape_W", "rest_shape"):
+        np.testing.assert_array_equal(getattr(trial, name), getattr(from_cli, name), err_msg=name)
+    assert report == json.loads((tmp_path / "cli.json").read_text())
+    assert report["frames"][5]["status"] == "missing_view"
+    assert np.isnan(trial.theta[5]) and np.isnan(trial.base_W[5]).all()
+    assert seen and seen[-1] == (12, 12)
+    assert trial.contact[8] == 1 and len(report["contact_periods"]) == 1
+    ok = np.array([f["status"] == "ok" for f in report["frames"]])
+    assert ok.sum() == 11
+    np.testing.assert_allclose(trial.theta[ok], np.radians(5.0 + 2.0 * np.arange(12))[ok], atol=1e-4)

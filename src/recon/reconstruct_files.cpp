@@ -1,0 +1,69 @@
+#include "vibrissa/recon/reconstruct_files.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "vibrissa/recon/camera.hpp"
+
+namespace vibrissa::recon {
+
+namespace {
+
+Camera named_camera(const std::map<std::string, Camera>& cams, const std::string& name, const std::string& path) {
+  auto it = cams.find(name);
+  if (it == cams.end()) throw std::invalid_argument(path + ": field 'cameras." + name + "': no camera of that name");
+  return it->second;
+}
+
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
+}  // namespace
+
+ReconstructedTrial reconstruct_files(const ReconstructFiles& files, const ReconstructOptions& options,
+                                     const std::string& source, const RunControl& control) {
+  const auto cams = read_cameras_json(files.calibration);
+  const Camera top_cam = named_camera(cams, files.top_camera, files.calibration);
+  const Camera front_cam = named_camera(cams, files.front_camera, files.calibration);
+  const Tracks2D top = read_tracks(files.top, files.top_selection);
+  const Tracks2D front = read_tracks(files.front, files.front_selection);
+  ReconstructedTrial out;
+  out.reconstruction = reconstruct(top, top_cam, front, front_cam, options, control);
+  out.trial = to_trial(out.reconstruction, options, {}, source);
+  return out;
+}
+
+std::string report_json(const Reconstruction& rec, int indent) {
+  nlohmann::json j;
+  auto& frames = j["frames"];
+  frames = nlohmann::json::array();
+  for (const auto& f : rec.frames)
+    frames.push_back({{"frame", f.frame}, {"status", frame_status_name(f.status)}, {"points_used", f.points_used},
+                      {"reprojection_px", finite_or_null(f.reprojection_px)},
+                      {"approach_m", finite_or_null(f.approach)}, {"contact_s_m", finite_or_null(f.contact_s)}});
+  auto& periods = j["contact_periods"];
+  periods = nlohmann::json::array();
+  for (const auto& u : rec.undeflected) {
+    nlohmann::json shape = nlohmann::json::array();
+    for (const auto& p : u.shape_W) shape.push_back({p.x(), p.y(), p.z()});
+    periods.push_back({{"first_frame", u.first_frame}, {"last_frame", u.last_frame},
+                       {"undeflected_from_frame", u.source_frame}, {"undeflected_frames_averaged", u.frames_averaged},
+                       {"undeflected_shape_m", shape}});
+  }
+  return j.dump(indent);
+}
+
+std::string summary_line(const ReconstructedTrial& r) {
+  const Reconstruction& rec = r.reconstruction;
+  std::size_t contact = 0;
+  for (auto c : r.trial.contact) contact += c;
+  return std::to_string(rec.frames.size()) + " frames, " + std::to_string(rec.count(FrameStatus::ok)) +
+         " reconstructed (" + std::to_string(contact) + " in contact, " + std::to_string(rec.undeflected.size()) +
+         " contact periods); flagged: " + std::to_string(rec.count(FrameStatus::missing_view)) + " missing view, " +
+         std::to_string(rec.count(FrameStatus::too_few_points)) + " too few points, " +
+         std::to_string(rec.count(FrameStatus::reprojection)) + " reprojection, " +
+         std::to_string(rec.count(FrameStatus::inconsistent_base)) + " inconsistent base";
+}
+
+}  // namespace vibrissa::recon
