@@ -15,7 +15,8 @@ void register_solve(CLI::App& app) {
   cmd->add_option("-o,--output", *out_path, "write the result here (JSON) instead of standard output");
   cmd->callback([case_path, out_path] {
     const Case c = case_from_json(read_json_file(*case_path));
-    const nlohmann::json result = solution_to_json(solve_case(c));
+    const nlohmann::json result = case_result_to_json(c, solve_case(c));
+    for (const auto& w : result.at("warnings")) std::cerr << "vibrissa: warning: " << w.get<std::string>() << "\n";
     if (out_path->empty())
       std::cout << result.dump(2) << "\n";
     else

@@ -1,1 +1,2 @@
-set(VIBRISSA_TEST_SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_contact_modes.cpp)
+set(VIBRISSA_TEST_SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_contact_modes.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/solution_contract_test.cpp)

@@ -5,6 +5,7 @@
 // (R_WB, p_W_base) — is a small value given to each solve; the forward model (chain.hpp) works in B and
 // writes only into caller-owned storage.
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,6 +41,11 @@ struct WhiskerProperties {
 };
 
 void validate(const WhiskerProperties& props);
+
+class Whisker;
+/// Throws std::invalid_argument naming `source` unless the built whisker is usable: arc length within
+/// limits (core/limits.hpp), every link of positive finite length, every joint compliance finite.
+void check_rest_geometry(const Whisker& whisker, std::string_view source);
 
 class Whisker {
  public:

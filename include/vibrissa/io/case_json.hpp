@@ -55,6 +55,9 @@ Case case_from_json(const nlohmann::json& j);
 Solution solve_case(const Case& c);
 
 nlohmann::json solution_to_json(const Solution& s);
+/// The result file of `vibrissa solve`: solution_to_json plus "warnings", the plausibility warnings of the
+/// case's whisker (core/plausibility.hpp; an empty list when none).
+nlohmann::json case_result_to_json(const Case& c, const Solution& s);
 nlohmann::json to_json(const Eigen::Vector3d& v);
 
 /// Reads and parses a JSON file; errors name the file.
