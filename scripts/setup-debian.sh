@@ -18,6 +18,7 @@ PACKAGES=(
   python3-numpy python3-matplotlib python3-pytest python3-h5py
   python3-pandas           # TrialResult.to_dataframe() in the Python package
   ffmpeg                   # MP4 animations
+  clang-14 libclang-rt-14-dev libomp-14-dev   # libFuzzer harnesses (scripts/fuzz.sh)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

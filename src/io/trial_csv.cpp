@@ -152,8 +152,10 @@ trial::Trial read_trial_csv(const std::string& path) {
   const double Ts = trial::time_scale(u.time, located_message(path, uline, "units", "time"));
 
   auto& mat = t.meta.material;
-  for (const auto& [key, vl] : meta) {
-    const auto& [value, ln] = vl;
+  for (const auto& entry : meta) {  // no structured bindings: clang 14 cannot capture them in the lambda
+    const std::string& key = entry.first;
+    const std::string& value = entry.second.first;
+    const std::size_t ln = entry.second.second;
     auto num = [&] { return parse_numbers(value, 1, path, ln, key)[0]; };
     if (key == "vibrissa-trial") continue;
     if (key == "frame_rate_Hz") t.meta.frame_rate = num();
