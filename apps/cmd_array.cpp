@@ -14,6 +14,7 @@
 #include "progress.hpp"
 #include "run_python.hpp"
 #include "vibrissa/array/sweep.hpp"
+#include "vibrissa/core/limits.hpp"
 #include "vibrissa/io/array_config.hpp"
 #include "vibrissa/io/array_outputs.hpp"
 #include "vibrissa/io/figure_files.hpp"
@@ -55,7 +56,8 @@ void register_array(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
   cmd->add_option("--pitches", a->pitches, "override head.pitches_deg, e.g. -20,-10,0,10,20");
-  cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(0, limits::max_threads));
   cmd->add_flag("--csv", a->csv, "also write array.csv (one row per pitch, whisker and frame)");
   cmd->add_flag("--gif", a->gif, "write the animation as GIF instead of MP4");
   cmd->add_option("--frames", a->frames, "animation: number of rendered frames (overrides output.render_count)")
@@ -100,6 +102,7 @@ void register_array(CLI::App& app) {
               << result.wall_seconds << " s (" << result.solves << " edge solves";
     if (result.failed_solves) std::cout << ", " << result.failed_solves << " without equilibrium -> pushed past";
     std::cout << ")\n";
+    for (const std::string& w : array::array_warnings(result)) std::cerr << "vibrissa: warning: " << w << "\n";
     io::write_array_outputs(result, config, j, out, {.csv = a->csv});
     std::cout << std::setprecision(3);
     std::cout << "pitch_deg  touching  pushed_past  peak_MB_uNm (whisker)  mean_peak_MB_uNm\n";

@@ -16,6 +16,7 @@ void register_solve(CLI::App& app) {
   cmd->callback([case_path, out_path] {
     const Case c = case_from_json(read_json_file(*case_path));
     const nlohmann::json result = solve_case_to_json(c);
+    for (const auto& w : result.at("warnings")) std::cerr << "vibrissa: warning: " << w.get<std::string>() << "\n";
     if (out_path->empty())
       std::cout << result.dump(2) << "\n";
     else

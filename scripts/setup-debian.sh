@@ -19,6 +19,7 @@ PACKAGES=(
   python3-pandas           # TrialResult.to_dataframe() in the Python package
   ffmpeg                   # MP4 animations
   python3-venv python3-pip dpkg-dev   # install checks: pip into a venv, cpack -G DEB (dpkg-shlibdeps)
+  clang-14 libclang-rt-14-dev libomp-14-dev   # libFuzzer harnesses (scripts/fuzz.sh)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

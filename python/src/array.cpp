@@ -9,9 +9,11 @@
 #include <filesystem>
 
 #include "bindings.hpp"
+#include "convert.hpp"
 #include "interruptible.hpp"
 #include "vibrissa/io/array_config.hpp"
 #include "vibrissa/io/array_outputs.hpp"
+#include "vibrissa/io/json_input.hpp"
 
 namespace vibrissa::python {
 
@@ -77,13 +79,7 @@ py::dict array_datasets(const ArrayRun& run) {
   return d;
 }
 
-nlohmann::json parse_config(const std::string& text) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw py::value_error(std::string("array config is not valid JSON: ") + e.what());
-  }
-}
+nlohmann::json parse_config(const std::string& text) { return io::parse_json_text(text, "array config", true); }
 
 }  // namespace
 
@@ -108,7 +104,7 @@ void bind_array(py::module_& m) {
   m.def(
       "_simulate_array",
       [](const std::optional<std::string>& config_text, const std::optional<std::string>& path,
-         std::optional<int> threads, const py::object& progress) {
+         const py::object& threads, const py::object& progress) {
         namespace fs = std::filesystem;
         ArrayRun run;
         fs::path base = fs::current_path();
@@ -118,9 +114,9 @@ void bind_array(py::module_& m) {
         } else {
           run.config_json = config_text ? parse_config(*config_text) : io::default_array_config_json();
         }
-        if (threads) {
-          if (*threads < 0) throw py::value_error("threads must be >= 0, got " + std::to_string(*threads));
-          if (*threads > 0) run.config_json["threads"] = *threads;
+        if (!threads.is_none()) {
+          const int n = thread_count_arg(threads, 0);
+          if (n > 0) run.config_json["threads"] = n;
         }
         run.config = io::array_config_from_json(run.config_json, base);
         run.result = run_interruptible(

@@ -295,9 +295,7 @@ struct Poses {
 
 int thread_count(const py::object& threads) {
   if (threads.is_none()) return omp_get_max_threads();
-  const int n = threads.cast<int>();
-  if (n < 1) throw py::value_error("threads must be >= 1 or None, got " + std::to_string(n));
-  return n;
+  return thread_count_arg(threads, 1);
 }
 
 /// Runs `solve_one(s, f)` over every (series, frame) of the layout in parallel (independent frames).

@@ -5,19 +5,15 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "vibrissa/core/plausibility.hpp"
 #include "vibrissa/io/case_json.hpp"
+#include "vibrissa/io/json_input.hpp"
 
 namespace vibrissa::python {
 
 namespace {
 
-nlohmann::json parse(const std::string& text, const char* what) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw py::value_error(std::string(what) + " is not valid JSON: " + e.what());
-  }
-}
+nlohmann::json parse(const std::string& text, const char* what) { return io::parse_json_text(text, what); }
 
 /// Converts arrays of numbers in a JSON-derived Python dict to NumPy arrays (recursively).
 py::object arrays_in(const py::object& obj) {
@@ -126,6 +122,10 @@ void bind_case(py::module_& m) {
             return solve_case(c);
           },
           "Solves the case exactly as `vibrissa solve` does.")
+      .def_property_readonly(
+          "warnings", [](const Case& c) { return plausibility_warnings(c.whisker); },
+          "Plausibility warnings of the case's whisker (a likely unit slip; docs/formats.md), as `vibrissa solve` "
+          "prints them.")
       .def("__repr__", [](const Case& c) {
         return "Case(mode=" + load_to_dict(c.load)["mode"].cast<std::string>() +
                ", links=" + std::to_string(c.whisker.links()) + ")";
@@ -147,7 +147,12 @@ void bind_case(py::module_& m) {
   m.def(
       "write_result", [](const std::string& path, const Solution& s) { write_json_file(path, solution_to_json(s)); },
       py::arg("path"), py::arg("solution"),
-      "Writes the result file exactly as `vibrissa solve -o PATH` does (atomically).");
+      "Writes the Solution's JSON (without the case's warnings) atomically.");
+  m.def(
+      "write_case_result",
+      [](const std::string& path, const Case& c, const Solution& s) { write_json_file(path, case_result_to_json(c, s)); },
+      py::arg("path"), py::arg("case"), py::arg("solution"),
+      "Writes the result file exactly as `vibrissa solve -o PATH` does (atomically, with \"warnings\").");
 }
 
 }  // namespace vibrissa::python

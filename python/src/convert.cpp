@@ -3,6 +3,8 @@
 #include <cstring>
 #include <sstream>
 
+#include "vibrissa/core/limits.hpp"
+
 namespace vibrissa::python {
 
 std::string shape_string(const py::array& a) {
@@ -19,6 +21,9 @@ std::string shape_string(const py::array& a) {
 
 DoubleArray as_double_array(py::handle obj, const char* name) {
   if (obj.is_none()) throw py::value_error(std::string(name) + " must be an array of numbers, got None");
+  if (const py::array raw = py::array::ensure(obj); raw && raw.dtype().kind() == 'c')
+    throw py::value_error(std::string(name) + " must be real, got complex values (dtype " +
+                          std::string(py::str(raw.dtype())) + ")");
   DoubleArray a = DoubleArray::ensure(obj);  // null (error cleared) when not convertible
   if (!a)
     throw py::value_error(std::string(name) + " must be an array of real numbers, got " +
@@ -52,6 +57,23 @@ std::vector<double> vector1(py::handle obj, const char* name) {
   const DoubleArray a = as_double_array(obj, name);
   if (a.ndim() != 1) throw py::value_error(std::string(name) + " must be 1-D, got shape " + shape_string(a));
   return {a.data(), a.data() + a.shape(0)};
+}
+
+int thread_count_arg(const py::handle& threads, int min_value) {
+  PyObject* index = py::isinstance<py::bool_>(threads) ? nullptr : PyNumber_Index(threads.ptr());  // int, numpy ints
+  if (!index) {
+    PyErr_Clear();
+    throw py::value_error("threads must be an int or None, got " +
+                          std::string(py::str(py::type::handle_of(threads).attr("__name__"))));
+  }
+  int overflow = 0;
+  const long long n = PyLong_AsLongLongAndOverflow(index, &overflow);
+  Py_DECREF(index);
+  if (overflow != 0 || n < min_value || n > limits::max_threads)
+    throw py::value_error("threads must lie in [" + std::to_string(min_value) + ", " +
+                          std::to_string(limits::max_threads) + "], got " +
+                          (overflow ? std::string(py::str(threads)) : std::to_string(n)));
+  return static_cast<int>(n);
 }
 
 py::array_t<double> to_array(const Eigen::Vector3d& v) {

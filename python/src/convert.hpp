@@ -21,7 +21,8 @@ using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecas
 /// "(5, 2)" for an array of that shape.
 std::string shape_string(const py::array& a);
 
-/// Converts `obj` to a C-contiguous float64 array; ValueError naming `name` if it cannot be.
+/// Converts `obj` to a C-contiguous float64 array; ValueError naming `name` if it cannot be (complex data
+/// included: the imaginary part is never dropped silently).
 DoubleArray as_double_array(py::handle obj, const char* name);
 
 /// A 3-vector [x, y, z]; ValueError naming `name` unless `obj` has shape (3,).
@@ -33,6 +34,9 @@ std::vector<Eigen::Vector3d> points3(py::handle obj, const char* name);
 
 /// A 1-D array of floats; ValueError naming `name` for any other shape.
 std::vector<double> vector1(py::handle obj, const char* name);
+
+/// A thread count: a Python int in [min_value, limits::max_threads]; ValueError naming "threads" otherwise.
+int thread_count_arg(const py::handle& threads, int min_value);
 
 /// New NumPy arrays (they own their memory).
 py::array_t<double> to_array(const Eigen::Vector3d& v);

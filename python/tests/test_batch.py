@@ -145,7 +145,7 @@ def test_batch_layout_errors_name_the_arguments(small_whisker, peg_track):
         vibrissa.solve_point_batch([small_whisker, 3], peg_track)
     with pytest.raises(ValueError, match=r"edge_points must have shape"):
         vibrissa.solve_edge_batch(small_whisker, np.zeros((2, 2, 2, 3)))
-    with pytest.raises(ValueError, match=r"threads must be >= 1"):
+    with pytest.raises(ValueError, match=r"threads must lie in \[1, 1024\], got 0"):
         vibrissa.solve_point_batch(small_whisker, peg_track, threads=0)
     with pytest.raises(ValueError, match=r"load.force must be >= 0.*series 0, frame 1"):
         vibrissa.solve_force_batch(small_whisker, [1e-5, -1.0], 0.01)

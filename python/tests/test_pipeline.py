@@ -252,7 +252,7 @@ def test_errors_name_the_field(tmp_path, synthetic_trial):
         vibrissa.analyze_trial(synthetic_trial, mu_eq7=float("nan"))
     with pytest.raises(ValueError, match="time.frames"):
         vibrissa.simulate_array(scene(frames=1))
-    with pytest.raises(ValueError, match="threads must be >= 0, got -2"):
+    with pytest.raises(ValueError, match=r"threads must lie in \[0, 1024\], got -2"):
         vibrissa.simulate_array(threads=-2)
     bad = tmp_path / "bad.csv"
     bad.write_text("# vibrissa-trial: 1\n# rest_point: 0 0 0\n# rest_point: 1 0 0\n# rest_point: 2 0.1 0\n"

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from typing import Any, Mapping, Optional, Union
 
 import numpy as np
@@ -78,7 +79,10 @@ def solve_case_file(case_path: Union[str, os.PathLike], result_path: Union[str, 
                     ) -> _vibrissa.Solution:
     """``vibrissa solve CASE [-o RESULT]`` from Python: reads, solves, and (if ``result_path``) writes the
     result file exactly as the CLI does. Returns the :class:`Solution`."""
-    solution = _vibrissa.Case.from_file(os.fspath(case_path)).solve()
+    case = _vibrissa.Case.from_file(os.fspath(case_path))
+    for message in case.warnings:  # likely unit slips, as the CLI prints them
+        warnings.warn(message, stacklevel=2)
+    solution = case.solve()
     if result_path is not None:
-        _vibrissa.write_result(os.fspath(result_path), solution)
+        _vibrissa.write_case_result(os.fspath(result_path), case, solution)
     return solution

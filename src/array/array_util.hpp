@@ -10,15 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "vibrissa/core/checks.hpp"
+
 namespace vibrissa::array {
 
 [[noreturn]] inline void fail(const std::string& what) { throw std::invalid_argument(what); }
 
-inline std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
+inline std::string fmt(double v) { return format_value(v); }
 
 /// Degrees to radians.
 constexpr double deg(double degrees) { return degrees * std::numbers::pi / 180.0; }
@@ -27,17 +25,12 @@ constexpr double to_deg(double radians) { return radians * 180.0 / std::numbers:
 
 /// A number from text; throws naming `field` (NaN and inf are refused).
 inline double parse_number(const std::string& text, const std::string& field) {
-  double v = 0.0;
-  std::size_t used = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    fail(field + " must be a number, got '" + text + "'");
-  }
-  while (used < text.size() && std::isspace(static_cast<unsigned char>(text[used]))) ++used;
-  if (used != text.size()) fail(field + " must be a number, got '" + text + "'");
-  if (!std::isfinite(v)) fail(field + " must be finite, got " + text);
-  return v;
+  std::size_t end = text.size();
+  while (end > 0 && std::isspace(static_cast<unsigned char>(text[end - 1]))) --end;
+  const std::optional<double> v = parse_decimal(std::string_view(text).substr(0, end));
+  if (!v) fail(field + " must be a number, got '" + quote_text(text) + "'");
+  if (!std::isfinite(*v)) fail(field + " must be finite, got " + quote_text(text));
+  return *v;
 }
 
 /// Cells of one CSV line (no quoting; surrounding blanks trimmed).

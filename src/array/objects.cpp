@@ -17,14 +17,6 @@ void check_point(const Eigen::Vector3d& p, const std::string& field) {
   if (!p.allFinite()) fail(field + " must be finite, got " + vec_mm(p) + " mm");
 }
 
-Eigen::Vector3d unit_direction(const Eigen::Vector3d& d, const std::string& field) {
-  if (!d.allFinite())
-    fail(field + " must be finite, got [" + fmt(d.x()) + ", " + fmt(d.y()) + ", " + fmt(d.z()) + "]");
-  const double n = d.norm();
-  if (!(n > 1e-12)) fail(field + " must be a non-zero vector, got [" + fmt(d.x()) + ", " + fmt(d.y()) + ", " + fmt(d.z()) + "]");
-  return d / n;
-}
-
 // Any unit vector normal to the unit vector d (deterministic).
 Eigen::Vector3d normal_to(const Eigen::Vector3d& d) {
   const Eigen::Vector3d helper = std::abs(d.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
@@ -54,7 +46,7 @@ SceneObject make_edge(const Eigen::Vector3d& point, const Eigen::Vector3d& direc
                       ObjectFrame frame, const std::string& field) {
   check_point(point, field + ".point_mm");
   check_length(length, field + ".length_mm");
-  SceneObject o{"edge", frame, {segment(point, unit_direction(direction, field + ".direction"), length)}};
+  SceneObject o{"edge", frame, {segment(point, vibrissa::unit_direction(direction, field + ".direction"), length)}};
   return o;
 }
 
@@ -69,7 +61,7 @@ SceneObject make_prism(const std::vector<Eigen::Vector3d>& vertices, const Eigen
   if (vertices.size() != 3)
     fail(field + ".vertices_mm must hold 3 points, got " + std::to_string(vertices.size()));
   for (std::size_t i = 0; i < 3; ++i) check_point(vertices[i], field + ".vertices_mm[" + std::to_string(i) + "]");
-  const Eigen::Vector3d d = unit_direction(axis, field + ".axis");
+  const Eigen::Vector3d d = vibrissa::unit_direction(axis, field + ".axis");
   check_length(length, field + ".length_mm");
   const Eigen::Vector3d n = (vertices[1] - vertices[0]).cross(vertices[2] - vertices[0]);
   if (n.norm() < 1e-12) fail(field + ".vertices_mm must span a triangle, but the 3 points are collinear");

@@ -159,6 +159,7 @@ std::vector<double> uniform_times(double start, double end, int frames) {
   if (!std::isfinite(start) || !std::isfinite(end) || !(end > start))
     fail("time: end_s must be later than start_s, got start " + fmt(start) + " s, end " + fmt(end) + " s");
   if (frames < 2) fail("time.frames must be >= 2, got " + std::to_string(frames));
+  require_at_most(static_cast<std::size_t>(frames), limits::max_array_frames, "time.frames");
   std::vector<double> t(static_cast<std::size_t>(frames));
   for (int k = 0; k < frames; ++k) t[static_cast<std::size_t>(k)] = start + (end - start) * k / (frames - 1);
   return t;
@@ -189,15 +190,28 @@ void validate(const SimulationConfig& c) {
     fail("solver.mode must be 'edge' or 'frictional_edge' (an array has no tracked contact points), got 'contact_point'");
   if (!(std::isfinite(c.mu) && c.mu >= 0.0)) fail("solver.mu must be finite and >= 0, got " + fmt(c.mu));
   if (c.links < 2) fail("solver.links must be >= 2, got " + std::to_string(c.links));
-  if (!(std::isfinite(c.tolerance) && c.tolerance > 0.0))
-    fail("solver.tolerance must be positive, got " + fmt(c.tolerance));
+  if (!(c.tolerance > 0.0 && c.tolerance <= 1e-3))
+    fail("solver.tolerance_m must lie in (0, 0.001], got " + fmt(c.tolerance));
   if (c.max_iterations < 1) fail("solver.max_iterations must be >= 1, got " + std::to_string(c.max_iterations));
   for (int f : c.render_frames)
     if (f < 0 || static_cast<std::size_t>(f) >= c.times.size())
       fail("output.render_frames: frame " + std::to_string(f) + " is outside 0.." + std::to_string(c.times.size() - 1));
   if (c.render_pitch < 0 || static_cast<std::size_t>(c.render_pitch) >= c.pitches.size())
     fail("output.render_pitch must index head.pitches_deg, got " + std::to_string(c.render_pitch));
-  if (c.threads < 0) fail("threads must be >= 0, got " + std::to_string(c.threads));
+  if (c.threads < 0 || c.threads > limits::max_threads)
+    fail("threads must lie in [0, " + std::to_string(limits::max_threads) + "], got " + std::to_string(c.threads));
+  if (c.links > limits::max_links) fail("solver.links must be <= " + std::to_string(limits::max_links) + ", got " + std::to_string(c.links));
+  require_at_most(c.times.size(), limits::max_array_frames, "time: number of frames");
+  require_at_most(c.objects.size(), limits::max_edges, "objects: number of objects");
+  const double whiskers = static_cast<double>(c.morphology.whiskers.size());  // products in double: no overflow
+  const double samples = static_cast<double>(c.times.size()) * whiskers * static_cast<double>(c.pitches.size());
+  if (samples > static_cast<double>(limits::max_array_samples))
+    fail("frames x whiskers x pitches = " + fmt(samples) + " is more than the limit of " +
+         std::to_string(limits::max_array_samples) + " samples per run (docs/formats.md, \"Limits\")");
+  const double rendered = static_cast<double>(c.render_frames.size()) * whiskers * (c.links + 1.0);
+  if (rendered > static_cast<double>(limits::max_array_samples))
+    fail("output.render_count x whiskers x (solver.links + 1) = " + fmt(rendered) + " is more than the limit of " +
+         std::to_string(limits::max_array_samples) + " rendered nodes per run");
 }
 
 ArrayResult simulate_array(const SimulationConfig& c, const RunControl& control) {

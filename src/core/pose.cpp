@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-#include <stdexcept>
 
 namespace vibrissa {
 
@@ -46,27 +44,6 @@ Placement::Placement(const Pose& pose) {
   p_W_base = pose.p_W_base;
 }
 
-void require_finite(double v, const char* field) {
-  if (!std::isfinite(v)) {
-    std::ostringstream os;
-    os << field << " must be finite, got " << v;
-    throw std::invalid_argument(os.str());
-  }
-}
-void require_finite(const Eigen::Vector3d& v, const char* field) {
-  if (!v.allFinite()) {
-    std::ostringstream os;
-    os << field << " must be finite, got [" << v.x() << ", " << v.y() << ", " << v.z() << "]";
-    throw std::invalid_argument(os.str());
-  }
-}
-void require_positive(double v, const char* field) {
-  if (!(std::isfinite(v) && v > 0.0)) {
-    std::ostringstream os;
-    os << field << " must be a positive finite number, got " << v;
-    throw std::invalid_argument(os.str());
-  }
-}
 void validate(const Pose& pose) {
   require_finite(pose.p_W_base, "pose.base");
   require_finite(pose.theta, "pose.theta");

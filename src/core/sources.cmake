@@ -1,4 +1,6 @@
 target_sources(vibrissa PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/checks.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/plausibility.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pose.cpp
   ${CMAKE_CURRENT_LIST_DIR}/rest_curve.cpp
   ${CMAKE_CURRENT_LIST_DIR}/whisker.cpp

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -15,12 +14,6 @@ namespace vibrissa {
 namespace {
 
 [[noreturn]] void fail(const std::string& what) { throw std::invalid_argument(what); }
-
-std::string num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 // Value at fraction u in [0, 1] of samples equally spaced base to tip (piecewise linear).
 double sample_profile(const std::vector<double>& values, double u) {
@@ -36,28 +29,48 @@ Eigen::Matrix3d minimal_rotation(const Eigen::Vector3d& from, const Eigen::Vecto
 
 }  // namespace
 
+void check_rest_geometry(const Whisker& w, std::string_view source) {
+  const double L = w.length();
+  if (!(L >= limits::min_whisker_length_m && L <= limits::max_whisker_length_m))
+    fail(std::string(source) + ": the whisker's arc length must lie in [" + format_value(limits::min_whisker_length_m) +
+         ", " + format_value(limits::max_whisker_length_m) + "] m, got " + format_value(L));
+  for (std::size_t i = 0; i < w.link_lengths().size(); ++i) {
+    const double l = w.link_lengths()[i];
+    if (!(std::isfinite(l) && l > 0.0))
+      fail(std::string(source) + ": link " + std::to_string(i) + " has length " + format_value(l) +
+           " after resampling: the points are too close together or too far apart");
+  }
+  for (std::size_t j = 0; j < w.bending_compliance().size(); ++j)
+    if (!(std::isfinite(w.bending_compliance()[j]) && std::isfinite(w.torsion_compliance()[j])))
+      fail(std::string(source) + ": the stiffness at joint " + std::to_string(j) +
+           " is not finite (radius or Young's modulus out of range)");
+}
+
 void validate(const WhiskerProperties& p) {
-  if (p.links < 2) fail("whisker.links must be >= 2, got " + std::to_string(p.links));
+  require_integer(p.links, 2, limits::max_links, "whisker.links");
   if (p.radii.empty()) {
-    require_positive(p.base_radius, "whisker.base_radius");
-    require_positive(p.taper_ratio, "whisker.taper_ratio");
+    require_in_range(p.base_radius, limits::min_radius_m, limits::max_radius_m, "whisker.base_radius");
+    require_in_range(p.taper_ratio, 1.0 / limits::max_taper_ratio, limits::max_taper_ratio, "whisker.taper_ratio");
   } else {
     if (p.radii.size() < 2) fail("whisker.radii needs at least 2 values, got " + std::to_string(p.radii.size()));
+    require_at_most(p.radii.size(), limits::max_list_length, "whisker.radii");
     for (std::size_t i = 0; i < p.radii.size(); ++i)
-      if (!(std::isfinite(p.radii[i]) && p.radii[i] > 0.0))
-        fail("whisker.radii[" + std::to_string(i) + "] must be positive, got " + num(p.radii[i]));
+      require_in_range(p.radii[i], limits::min_radius_m, limits::max_radius_m,
+                       "whisker.radii[" + std::to_string(i) + "]");
   }
   if (p.youngs_moduli.empty()) {
-    require_positive(p.youngs_modulus, "whisker.youngs_modulus");
+    require_in_range(p.youngs_modulus, limits::min_youngs_modulus_Pa, limits::max_youngs_modulus_Pa,
+                     "whisker.youngs_modulus");
   } else {
     if (p.youngs_moduli.size() < 2)
       fail("whisker.youngs_modulus as a list needs at least 2 values, got " + std::to_string(p.youngs_moduli.size()));
+    require_at_most(p.youngs_moduli.size(), limits::max_list_length, "whisker.youngs_modulus");
     for (std::size_t i = 0; i < p.youngs_moduli.size(); ++i)
-      if (!(std::isfinite(p.youngs_moduli[i]) && p.youngs_moduli[i] > 0.0))
-        fail("whisker.youngs_modulus[" + std::to_string(i) + "] must be positive, got " + num(p.youngs_moduli[i]));
+      require_in_range(p.youngs_moduli[i], limits::min_youngs_modulus_Pa, limits::max_youngs_modulus_Pa,
+                       "whisker.youngs_modulus[" + std::to_string(i) + "]");
   }
   if (!(std::isfinite(p.poisson_ratio) && p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5 + 1e-12))
-    fail("whisker.poisson_ratio must lie in (-1, 0.5], got " + num(p.poisson_ratio));
+    fail("whisker.poisson_ratio must lie in (-1, 0.5], got " + format_value(p.poisson_ratio));
   if (p.base_stiffness) {
     require_positive(*p.base_stiffness, "whisker.base_stiffness");
     if (p.base == BaseJoint::rigid) fail("whisker.base_stiffness needs base \"elastic\", got base \"rigid\"");
@@ -68,8 +81,8 @@ Whisker Whisker::from_points(const std::vector<Eigen::Vector3d>& points, const W
                              const std::optional<Pose>& pose) {
   validate(props);
   if (points.size() < 3) fail("whisker.points needs at least 3 points, got " + std::to_string(points.size()));
-  for (std::size_t i = 0; i < points.size(); ++i)
-    require_finite(points[i], ("whisker.points[" + std::to_string(i) + "]").c_str());
+  require_at_most(points.size(), limits::max_shape_points, "whisker.points");
+  for (std::size_t i = 0; i < points.size(); ++i) require_finite(points[i], "whisker.points[" + std::to_string(i) + "]");
   Eigen::Vector3d tangent0;
   std::vector<Eigen::Vector3d> nodes = resample_points(points, props.links, &tangent0);
   WhiskerProperties used = props;
@@ -80,8 +93,11 @@ Whisker Whisker::from_points(const std::vector<Eigen::Vector3d>& points, const W
   const Eigen::Matrix3d R = whisker_frame(nodes, tangent0);  // columns: B axes in the input frame
   const Eigen::Vector3d base = nodes.front();
   for (auto& p : nodes) p = R.transpose() * (p - base);
+  if (!R.allFinite() || !base.allFinite())
+    fail("whisker.points: the curve through the points is not finite (coordinates too large or too close)");
   Whisker w;
   w.build(std::move(nodes), used);
+  check_rest_geometry(w, "whisker.points");
   w.placement_ = pose ? Placement(*pose) : Placement(R, base);
   return w;
 }
@@ -94,11 +110,12 @@ Whisker Whisker::from_parabola(double length, double a, const WhiskerProperties&
 Whisker Whisker::from_cubic(double length, double A, double B, const WhiskerProperties& props, const Pose& pose) {
   validate(props);
   validate(pose);
-  require_positive(length, "whisker.length");
+  require_in_range(length, limits::min_whisker_length_m, limits::max_whisker_length_m, "whisker.length");
   require_finite(A, "whisker.cubic[0]");
   require_finite(B, "whisker.cubic[1]");
   Whisker w;
   w.build(planar_polynomial_nodes(length, A, B, props.links), props);
+  check_rest_geometry(w, "whisker.curvature/cubic");
   w.placement_ = Placement(pose);
   return w;
 }
@@ -198,7 +215,7 @@ void Whisker::locate(double s, int& link, double& h) const {
   const int N = links();
   if (s >= arc_[static_cast<std::size_t>(N - 1)]) {
     link = N - 1;
-  } else if (s <= 0.0) {
+  } else if (!(s > 0.0)) {  // also NaN: never an index past the arrays
     link = 0;
   } else {
     auto it = std::upper_bound(arc_.begin(), arc_.end(), s);

@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <set>
 
 #include "../array/array_util.hpp"  // the array layer's message and unit helpers
+#include "vibrissa/core/checks.hpp"
+#include "vibrissa/io/json_input.hpp"
 #include "vibrissa/io/morphology_table.hpp"
 
 namespace vibrissa::io {
@@ -27,7 +28,7 @@ void only_keys(const json& j, const std::string& where, std::initializer_list<co
     if (!ok) {
       std::string list;
       for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
-      fail(where + (where.empty() ? "" : ".") + key + ": unknown key (expected one of: " + list + ")");
+      fail(where + (where.empty() ? "" : ".") + quote_text(key) + ": unknown key (expected one of: " + list + ")");
     }
   }
 }
@@ -39,39 +40,22 @@ double number(const json& j, const std::string& where, const std::string& key, d
   const json& v = j.at(key);
   if (v.is_string() && (v.get<std::string>() == "nan" || v.get<std::string>() == "NaN"))
     fail(path_of(where, key) + " must be finite, got NaN");
-  if (!v.is_number()) fail(path_of(where, key) + " must be a number, got " + v.dump());
-  const double x = v.get<double>();
-  if (!std::isfinite(x)) fail(path_of(where, key) + " must be finite, got " + fmt(x));
-  return x;
+  return io::json_number(v, path_of(where, key));
 }
 
-int integer(const json& j, const std::string& where, const std::string& key, int fallback) {
+int integer(const json& j, const std::string& where, const std::string& key, int fallback, int lo, int hi) {
   if (!j.contains(key)) return fallback;
-  const json& v = j.at(key);
-  if (!v.is_number_integer()) fail(path_of(where, key) + " must be an integer, got " + v.dump());
-  return v.get<int>();
+  return io::json_integer(j.at(key), path_of(where, key), lo, hi);
 }
 
 std::string text(const json& j, const std::string& where, const std::string& key, const std::string& fallback) {
   if (!j.contains(key)) return fallback;
-  const json& v = j.at(key);
-  if (!v.is_string()) fail(path_of(where, key) + " must be a string, got " + v.dump());
-  return v.get<std::string>();
+  return io::json_string(j.at(key), path_of(where, key));
 }
 
 std::vector<double> numbers(const json& j, const std::string& where, const std::string& key) {
-  std::vector<double> out;
-  if (!j.contains(key)) return out;
-  const json& v = j.at(key);
-  if (!v.is_array()) fail(path_of(where, key) + " must be a list of numbers, got " + v.dump());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string at = path_of(where, key) + "[" + std::to_string(i) + "]";
-    if (!v[i].is_number()) fail(at + " must be a number, got " + v[i].dump());
-    const double x = v[i].get<double>();
-    if (!std::isfinite(x)) fail(at + " must be finite, got " + fmt(x));
-    out.push_back(x);
-  }
-  return out;
+  if (!j.contains(key)) return {};
+  return io::json_numbers(j.at(key), path_of(where, key));
 }
 
 Eigen::Vector3d vec3(const json& j, const std::string& where, const std::string& key, const Eigen::Vector3d& fallback) {
@@ -151,12 +135,10 @@ nlohmann::json default_array_config_json() {
 }
 
 json read_array_config_json(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) fail("config: cannot open '" + path.string() + "'");
   try {
-    return json::parse(in, nullptr, true, true);
-  } catch (const json::exception& e) {
-    fail("config: '" + path.string() + "' is not valid JSON: " + e.what());
+    return io::read_json_input(path, true);
+  } catch (const std::invalid_argument& e) {
+    fail(std::string("config: ") + e.what());
   }
 }
 
@@ -184,7 +166,7 @@ SimulationConfig array_config_from_json(const json& j, const std::filesystem::pa
     if (!m.at("whiskers").is_array()) fail("morphology.whiskers must be a list of names");
     std::vector<std::string> names;
     for (const auto& n : m.at("whiskers")) {
-      if (!n.is_string()) fail("morphology.whiskers must be a list of names, got " + n.dump());
+      if (!n.is_string()) fail("morphology.whiskers must be a list of names, got " + io::describe(n));
       names.push_back(n.get<std::string>());
     }
     c.morphology = select_whiskers(c.morphology, names);
@@ -228,7 +210,7 @@ SimulationConfig array_config_from_json(const json& j, const std::filesystem::pa
     c.times = numbers(t, "time", "times_s");
   } else {
     c.times = uniform_times(number(t, "time", "start_s", 0.0), number(t, "time", "end_s", 0.0625),
-                            integer(t, "time", "frames", 250));
+                            integer(t, "time", "frames", 250, 2, static_cast<int>(limits::max_array_frames)));
   }
 
   // --- head ---
@@ -277,6 +259,7 @@ SimulationConfig array_config_from_json(const json& j, const std::filesystem::pa
   if (!j.contains("objects")) fail("objects is missing: the scene needs at least one peg, edge or prism");
   const json& objs = j.at("objects");
   if (!objs.is_array() || objs.empty()) fail("objects must be a non-empty list");
+  require_at_most(objs.size(), limits::max_edges, "objects: number of objects");
   for (std::size_t i = 0; i < objs.size(); ++i)
     c.objects.push_back(object_from(objs[i], "objects[" + std::to_string(i) + "]"));
 
@@ -285,23 +268,22 @@ SimulationConfig array_config_from_json(const json& j, const std::filesystem::pa
   only_keys(s, "solver", {"mode", "mu", "links", "tolerance_m", "max_iterations"});
   c.mode = contact_mode_from_string(text(s, "solver", "mode", "edge"), "solver.mode");
   c.mu = number(s, "solver", "mu", 0.48);
-  c.links = integer(s, "solver", "links", 100);
+  c.links = integer(s, "solver", "links", 100, 2, limits::max_links);
   c.tolerance = number(s, "solver", "tolerance_m", 1e-10);
-  c.max_iterations = integer(s, "solver", "max_iterations", 100);
+  c.max_iterations = integer(s, "solver", "max_iterations", 100, 1, limits::max_iterations);
 
   // --- output (what the simulation keeps for the animation) ---
   const json o = j.value("output", json::object());
   only_keys(o, "output", {"render_count", "render_pitch_index"});
-  const int render = integer(o, "output", "render_count", 50);
-  if (render < 0) fail("output.render_count must be >= 0, got " + std::to_string(render));
+  const int render = integer(o, "output", "render_count", 50, 0, static_cast<int>(limits::max_array_frames));
   const int F = static_cast<int>(c.times.size());
   const int n = std::min(render, F);
   for (int i = 0; i < n; ++i) {
     const int f = n == 1 ? F - 1 : static_cast<int>(std::lround(double(i) * (F - 1) / (n - 1)));
     if (c.render_frames.empty() || c.render_frames.back() != f) c.render_frames.push_back(f);
   }
-  c.render_pitch = integer(o, "output", "render_pitch_index", 0);
-  c.threads = integer(j, "", "threads", 0);
+  c.render_pitch = integer(o, "output", "render_pitch_index", 0, 0, static_cast<int>(limits::max_list_length));
+  c.threads = integer(j, "", "threads", 0, 0, limits::max_threads);
   validate(c);
   return c;
 }

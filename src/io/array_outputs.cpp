@@ -151,6 +151,7 @@ nlohmann::json array_summary_json(const ArrayResult& r, const SimulationConfig& 
   j["solves"] = r.solves;
   j["failed_solves"] = r.failed_solves;
   j["simulation_seconds"] = r.wall_seconds;
+  j["warnings"] = array_warnings(r);
   j["per_pitch"] = nlohmann::json::array();
   for (const PitchSummary& s : summarize_pitches(r)) {
     nlohmann::json e;

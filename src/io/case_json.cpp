@@ -1,11 +1,13 @@
 #include "vibrissa/io/case_json.hpp"
 
 #include <cmath>
-#include <fstream>
+#include <limits>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
+#include "vibrissa/core/checks.hpp"
+#include "vibrissa/core/plausibility.hpp"
+#include "vibrissa/io/json_input.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
@@ -16,34 +18,28 @@ using nlohmann::json;
 [[noreturn]] void fail(const std::string& msg) { throw std::invalid_argument(msg); }
 
 void reject_unknown(const json& j, const std::string& where, const std::set<std::string>& known) {
-  if (!j.is_object()) fail(where + " must be a JSON object, got " + j.dump());
+  if (!j.is_object()) fail(where + " must be a JSON object, got " + io::describe(j));
   for (const auto& [key, value] : j.items())
-    if (!known.count(key)) fail("unknown field " + where + "." + key);
+    if (!known.count(key)) fail("unknown field " + where + "." + quote_text(key));
 }
 
-double number(const json& j, const std::string& field) {
-  if (!j.is_number()) fail(field + " must be a number, got " + j.dump());
-  const double v = j.get<double>();
-  if (!std::isfinite(v)) fail(field + " must be finite, got " + j.dump());
-  return v;
-}
+double number(const json& j, const std::string& field) { return io::json_number(j, field); }
 
 double number_or(const json& j, const char* key, const std::string& where, double fallback) {
   return j.contains(key) ? number(j.at(key), where + "." + key) : fallback;
 }
 
-Eigen::Vector3d vec3(const json& j, const std::string& field) {
-  if (!j.is_array() || j.size() != 3) fail(field + " must be an array of 3 numbers, got " + j.dump());
-  Eigen::Vector3d v;
-  for (int i = 0; i < 3; ++i) v[i] = number(j[static_cast<std::size_t>(i)], field + "[" + std::to_string(i) + "]");
-  return v;
-}
+Eigen::Vector3d vec3(const json& j, const std::string& field) { return io::json_vec3(j, field); }
 
-std::vector<double> numbers(const json& j, const std::string& field) {
-  if (!j.is_array()) fail(field + " must be an array of numbers, got " + j.dump());
-  std::vector<double> out;
-  for (std::size_t i = 0; i < j.size(); ++i) out.push_back(number(j[i], field + "[" + std::to_string(i) + "]"));
-  return out;
+std::vector<double> numbers(const json& j, const std::string& field) { return io::json_numbers(j, field); }
+
+// A direction of any length: kept as given when the solvers can normalise it (bit-identical to the direct
+// API), rescaled to unit length when its squared norm would under- or overflow.
+Eigen::Vector3d direction(const json& j, const std::string& field) {
+  const Eigen::Vector3d v = vec3(j, field);
+  const Eigen::Vector3d unit = unit_direction(v, field);
+  const double n2 = v.squaredNorm();
+  return n2 >= std::numeric_limits<double>::min() && n2 <= std::numeric_limits<double>::max() ? v : unit;
 }
 
 Pose pose_from_json(const json& j) {
@@ -61,8 +57,7 @@ Edge edge_from_json(const json& j) {
   if (!j.contains("point")) fail("load.point is required for an edge");
   if (!j.contains("direction")) fail("load.direction is required for an edge");
   e.point = vec3(j.at("point"), "load.point");
-  e.direction = vec3(j.at("direction"), "load.direction");
-  if (!(e.direction.norm() > 0.0)) fail("load.direction must be non-zero, got " + j.at("direction").dump());
+  e.direction = direction(j.at("direction"), "load.direction");
   return e;
 }
 
@@ -117,9 +112,7 @@ Whisker whisker_from_json(const json& j) {
                   "youngs_modulus", "poisson_ratio", "base", "base_stiffness", "scheme"});
   WhiskerProperties p;
   if (j.contains("links")) {
-    const double n = number(j.at("links"), "whisker.links");
-    if (n != std::floor(n) || n < 2 || n > 100000) fail("whisker.links must be an integer >= 2, got " + j.at("links").dump());
-    p.links = static_cast<int>(n);
+    p.links = io::json_integer(j.at("links"), "whisker.links", 2, limits::max_links);
   }
   p.base_radius = number_or(j, "base_radius", "whisker", p.base_radius);
   p.taper_ratio = number_or(j, "taper_ratio", "whisker", p.taper_ratio);
@@ -135,14 +128,14 @@ Whisker whisker_from_json(const json& j) {
     const json& b = j.at("base");
     if (b == "elastic") p.base = BaseJoint::elastic;
     else if (b == "rigid") p.base = BaseJoint::rigid;
-    else fail("whisker.base must be \"elastic\" or \"rigid\", got " + b.dump());
+    else fail("whisker.base must be \"elastic\" or \"rigid\", got " + io::describe(b));
   }
   if (j.contains("base_stiffness")) p.base_stiffness = number(j.at("base_stiffness"), "whisker.base_stiffness");
   if (j.contains("scheme")) {
     const json& s = j.at("scheme");
     if (s == "paper") p.scheme = Scheme::paper;
     else if (s == "second_order") p.scheme = Scheme::second_order;
-    else fail("whisker.scheme must be \"paper\" or \"second_order\", got " + s.dump());
+    else fail("whisker.scheme must be \"paper\" or \"second_order\", got " + io::describe(s));
   }
   std::optional<Pose> pose;
   if (j.contains("pose")) pose = pose_from_json(j.at("pose"));
@@ -151,20 +144,21 @@ Whisker whisker_from_json(const json& j) {
   if (shapes != 1) fail("whisker needs exactly one of \"points\" or \"length\" (with \"curvature\" or \"cubic\")");
   if (j.contains("points")) {
     const json& pts = j.at("points");
-    if (!pts.is_array()) fail("whisker.points must be an array of [x, y, z], got " + pts.dump());
+    if (!pts.is_array()) fail("whisker.points must be an array of [x, y, z], got " + io::describe(pts));
+    require_at_most(pts.size(), limits::max_shape_points, "whisker.points: number of points");
     std::vector<Eigen::Vector3d> points;
     for (std::size_t i = 0; i < pts.size(); ++i) points.push_back(vec3(pts[i], "whisker.points[" + std::to_string(i) + "]"));
     if (j.contains("curvature") || j.contains("cubic")) fail("whisker.curvature/cubic cannot be combined with points");
     return Whisker::from_points(points, p, pose);
   }
   const double length = number(j.at("length"), "whisker.length");
-  if (!(length > 0.0)) fail("whisker.length must be positive, got " + j.at("length").dump());
+  if (!(length > 0.0)) fail("whisker.length must be positive, got " + format_value(length));
   if (j.contains("curvature") && j.contains("cubic")) fail("whisker has both curvature and cubic: give one");
   double A = 0.0, B = 0.0;
   if (j.contains("curvature")) B = number(j.at("curvature"), "whisker.curvature");
   if (j.contains("cubic")) {
     const auto c = numbers(j.at("cubic"), "whisker.cubic");
-    if (c.size() != 2) fail("whisker.cubic must be [A, B], got " + j.at("cubic").dump());
+    if (c.size() != 2) fail("whisker.cubic must be [A, B], got " + io::describe(j.at("cubic")));
     A = c[0];
     B = c[1];
   }
@@ -192,7 +186,8 @@ Load load_from_json(const json& j) {
     PointLoad l;
     l.point = vec3(j.at("point"), "load.point");
     if (j.contains("arc_length_hint")) l.arc_length_hint = number(j.at("arc_length_hint"), "load.arc_length_hint");
-    if (j.contains("edge_direction")) l.edge_direction = vec3(j.at("edge_direction"), "load.edge_direction");
+    if (j.contains("edge_direction"))
+      l.edge_direction = direction(j.at("edge_direction"), "load.edge_direction");
     return l;
   }
   if (mode == "edge") {
@@ -224,7 +219,7 @@ Load load_from_json(const json& j) {
     if (j.contains("noise")) l.noise_covariance = noise_from_json(j.at("noise"), l.signals.size());
     return l;
   }
-  fail("load.mode must be one of force, dead_load, point, edge, frictional_edge, base_wrench; got " + mode.dump());
+  fail("load.mode must be one of force, dead_load, point, edge, frictional_edge, base_wrench; got " + io::describe(mode));
 }
 
 Case case_from_json(const json& j) {
@@ -237,11 +232,11 @@ Case case_from_json(const json& j) {
     const json& oj = j.at("options");
     reject_unknown(oj, "options", {"tolerance", "max_iterations", "find_other_roots", "compute_shape"});
     o.tolerance = number_or(oj, "tolerance", "options", o.tolerance);
-    if (!(o.tolerance > 0.0)) fail("options.tolerance must be positive, got " + std::to_string(o.tolerance));
-    o.max_iterations = static_cast<int>(number_or(oj, "max_iterations", "options", o.max_iterations));
-    if (o.max_iterations < 1) fail("options.max_iterations must be >= 1, got " + std::to_string(o.max_iterations));
-    if (oj.contains("find_other_roots")) o.find_other_roots = oj.at("find_other_roots").get<bool>();
-    if (oj.contains("compute_shape")) o.compute_shape = oj.at("compute_shape").get<bool>();
+    if (oj.contains("max_iterations"))
+      o.max_iterations = io::json_integer(oj.at("max_iterations"), "options.max_iterations", 1, limits::max_iterations);
+    if (oj.contains("find_other_roots")) o.find_other_roots = io::json_bool(oj.at("find_other_roots"), "options.find_other_roots");
+    if (oj.contains("compute_shape")) o.compute_shape = io::json_bool(oj.at("compute_shape"), "options.compute_shape");
+    validate(o);
   }
   return Case{whisker_from_json(j.at("whisker")), load_from_json(j.at("load")), o};
 }
@@ -329,20 +324,22 @@ json base_wrench_to_json(const BaseWrenchResult& r) {
   return j;
 }
 
-json solve_case_to_json(const Case& c) {
-  if (const auto* l = std::get_if<BaseWrenchLoad>(&c.load))
-    return base_wrench_to_json(solve_base_wrench(c.whisker, l->force, l->moment, base_wrench_options(*l, c.options)));
-  return solution_to_json(solve_case(c));
+json case_result_to_json(const Case& c, const Solution& s) {
+  json j = solution_to_json(s);
+  j["warnings"] = plausibility_warnings(c.whisker);
+  return j;
 }
 
-json read_json_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) fail("cannot open case file " + path);
-  try {
-    return json::parse(in);
-  } catch (const json::parse_error& e) {
-    fail(path + ": not valid JSON: " + e.what());
+json solve_case_to_json(const Case& c) {
+  if (const auto* l = std::get_if<BaseWrenchLoad>(&c.load)) {
+    json j =
+        base_wrench_to_json(solve_base_wrench(c.whisker, l->force, l->moment, base_wrench_options(*l, c.options)));
+    j["warnings"] = plausibility_warnings(c.whisker);
+    return j;
   }
+  return case_result_to_json(c, solve_case(c));
 }
+
+json read_json_file(const std::string& path) { return io::read_json_input(path); }
 
 }  // namespace vibrissa

@@ -1,5 +1,7 @@
 #include "h5_file.hpp"
 
+#include "vibrissa/core/limits.hpp"
+
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
@@ -82,7 +84,12 @@ std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector
   dims.assign(static_cast<std::size_t>(rank), 0);
   H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
   std::size_t count = 1;
-  for (hsize_t x : dims) count *= static_cast<std::size_t>(x);
+  for (hsize_t x : dims) {  // bounded before any allocation (and before the product could overflow)
+    if (x > limits::max_array_elements || count * static_cast<std::size_t>(x) > limits::max_array_elements)
+      throw std::invalid_argument(source + ": column '" + name + "': more than " +
+                                  std::to_string(limits::max_array_elements) + " values (docs/formats.md, \"Limits\")");
+    count *= static_cast<std::size_t>(x);
+  }
   Handle type(H5Dget_type(d.get()), H5Tclose);
   const H5T_class_t cls = H5Tget_class(type.get());
   if (cls != H5T_FLOAT && cls != H5T_INTEGER)
@@ -166,12 +173,35 @@ void write_strings(hid_t loc, const std::string& name, const std::vector<std::st
     throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
 }
 
+namespace {
+// An attribute read into one value must hold exactly one (a scalar or an array of one element).
+void require_single_value(hid_t attribute, const std::string& name, const std::string& source) {
+  Handle space(H5Aget_space(attribute), H5Sclose);
+  const hssize_t n = space.valid() ? H5Sget_simple_extent_npoints(space.get()) : -1;
+  if (n != 1)
+    throw std::invalid_argument(source + ": attribute '" + name + "': expected a single value, got " +
+                                std::to_string(n) + " values");
+}
+}  // namespace
+
+std::vector<std::string> member_names(hid_t group) {
+  std::vector<std::string> names;
+  H5Literate(group, H5_INDEX_NAME, H5_ITER_NATIVE, nullptr,
+              [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+                static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+                return 0;
+              },
+              &names);
+  return names;
+}
+
 std::optional<std::string> read_string_attribute(hid_t loc, const std::string& name, const std::string& source) {
   if (H5Aexists(loc, name.c_str()) <= 0) return std::nullopt;
   Handle a(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose);
   Handle type(H5Aget_type(a.get()), H5Tclose);
   if (H5Tget_class(type.get()) != H5T_STRING)
     throw std::invalid_argument(source + ": attribute '" + name + "': expected a string");
+  require_single_value(a.get(), name, source);
   Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
   if (H5Tis_variable_str(type.get()) > 0) {
     H5Tset_size(mem.get(), H5T_VARIABLE);
@@ -197,6 +227,7 @@ std::optional<double> read_double_attribute(hid_t loc, const std::string& name, 
   const H5T_class_t cls = H5Tget_class(type.get());
   if (cls != H5T_FLOAT && cls != H5T_INTEGER)
     throw std::invalid_argument(source + ": attribute '" + name + "': expected a number");
+  require_single_value(a.get(), name, source);
   double v = 0.0;
   if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0)
     throw std::invalid_argument(source + ": attribute '" + name + "': unreadable");

@@ -53,9 +53,12 @@ void close_file(Handle& file, const std::string& path);
 Handle create_group(hid_t parent, const std::string& name);
 
 bool has_dataset(hid_t loc, const std::string& name);
+/// Names of the links (datasets, groups) in a group or file.
+std::vector<std::string> member_names(hid_t group);
 /// Dimensions of dataset `name`; nullopt if absent.
 std::optional<std::vector<hsize_t>> dataset_dims(hid_t loc, const std::string& name);
-/// Reads a dataset as doubles (row-major) and its dimensions. Throws naming `source` and `name`.
+/// Reads a dataset as doubles (row-major) and its dimensions. Throws naming `source` and `name`, also for
+/// more than limits::max_array_elements values (checked before reading).
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector<hsize_t>& dims,
                                  const std::string& source);
 

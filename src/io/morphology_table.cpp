@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "vibrissa/io/json_input.hpp"
 #include "../array/array_util.hpp"  // the array layer's message, unit and CSV-cell helpers
 
 namespace vibrissa::io {
@@ -84,6 +85,7 @@ Morphology morphology_from_csv(std::istream& in, const std::string& source) {
     if (cells.size() != header.size())
       fail(source + " line " + std::to_string(line_no) + ": expected " + std::to_string(header.size()) +
            " columns, got " + std::to_string(cells.size()));
+    require_at_most(m.whiskers.size() + 1, limits::max_whiskers, source + ": number of whiskers");
     std::map<std::string, std::string> fields;
     for (std::size_t i = 0; i < cells.size(); ++i) fields[header[i]] = cells[i];
     m.whiskers.push_back(spec_from_fields(fields, source + " line " + std::to_string(line_no)));
@@ -96,6 +98,7 @@ Morphology morphology_from_csv(std::istream& in, const std::string& source) {
 Morphology morphology_from_json(const nlohmann::json& table, const std::string& source) {
   const nlohmann::json& rows = table.is_object() && table.contains("whiskers") ? table.at("whiskers") : table;
   if (!rows.is_array()) fail(source + ": expected an array of whisker rows");
+  require_at_most(rows.size(), limits::max_whiskers, source + ": number of whiskers");
   Morphology m;
   m.source = source;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -103,7 +106,7 @@ Morphology morphology_from_json(const nlohmann::json& table, const std::string& 
     if (!rows[i].is_object()) fail(where + " must be an object");
     std::map<std::string, std::string> fields;
     for (const auto& [key, value] : rows[i].items())
-      fields[key] = value.is_string() ? value.get<std::string>() : value.dump();
+      fields[key] = value.is_string() ? value.get<std::string>() : describe(value);
     m.whiskers.push_back(spec_from_fields(fields, where));
   }
   if (m.whiskers.empty()) fail(source + ": no whiskers in the table");
@@ -115,16 +118,19 @@ Morphology read_morphology_table(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
   if (ext != ".csv" && ext != ".json")
     fail("morphology.source: table '" + path.string() + "' must end in .csv or .json");
+  if (ext == ".json") {
+    try {
+      return morphology_from_json(read_json_input(path), path.string());
+    } catch (const std::invalid_argument& e) {
+      fail(std::string("morphology.source: ") + e.what());
+    }
+  }
   std::ifstream in(path);
   if (!in) fail("morphology.source: cannot open '" + path.string() + "'");
-  if (ext == ".csv") return morphology_from_csv(in, path.string());
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {
-    fail("morphology.source: '" + path.string() + "' is not valid JSON: " + e.what());
-  }
-  return morphology_from_json(j, path.string());
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) require_at_most(size, limits::max_csv_file_bytes, "morphology.source: '" + path.string() + "': file size in bytes");
+  return morphology_from_csv(in, path.string());
 }
 
 }  // namespace vibrissa::io

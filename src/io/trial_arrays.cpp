@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "vibrissa/core/checks.hpp"
+
 namespace vibrissa::io {
 
 using trial::located_message;
@@ -69,6 +71,7 @@ trial::Trial assemble_trial(const ArrayReader& r) {
   };
   t.time = scaled(as_vector(required("time"), src, "time"), Ts);
   const std::size_t n = t.time.size();
+  require_at_most(n, limits::max_trial_frames, src + ": number of frames");
   t.base_W = as_points(required("base"), src, "base", Ls);
   t.theta = scaled(as_vector(required("theta"), src, "theta"), As);
   t.phi = scaled(as_vector(required("phi"), src, "phi"), As);
@@ -77,7 +80,7 @@ trial::Trial assemble_trial(const ArrayReader& r) {
   for (std::size_t i = 0; i < contact.size(); ++i) {
     if (!(contact[i] == 0.0 || contact[i] == 1.0))
       throw std::invalid_argument(
-          located_message(src, i + 1, "contact", "contact flag must be 0 or 1, got " + std::to_string(contact[i])));
+          located_message(src, i + 1, "contact", "contact flag must be 0 or 1, got " + format_value(contact[i])));
     t.contact.push_back(static_cast<std::uint8_t>(contact[i]));
   }
   if (auto a = r.array("contact_point")) t.contact_W = as_points(*a, src, "contact_point", Ls);
@@ -124,7 +127,13 @@ trial::Trial assemble_trial(const ArrayReader& r) {
   if (auto v = r.number("poisson_ratio")) m.poisson_ratio = *v;
   if (auto v = r.number("base_radius")) m.base_radius = *v * Ls;
   if (auto v = r.number("taper_ratio")) m.taper_ratio = *v;
-  if (auto v = r.number("links")) m.links = static_cast<int>(*v);
+  if (auto v = r.number("links")) {
+    try {
+      m.links = require_integer(*v, 2, limits::max_links, "links");
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(located_message(src, 0, "links", e.what()));
+    }
+  }
   trial::validate(t);
   return t;
 }

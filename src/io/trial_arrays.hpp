@@ -23,6 +23,11 @@ struct ArrayReader {
   std::function<std::optional<double>(const std::string&)> number;
 };
 
+/// Names of the arrays a trial file may hold (others are errors: typos must not pass silently).
+inline constexpr const char* trial_array_names[] = {
+    "time",  "base",       "theta", "phi",           "zeta",           "contact",   "contact_point",
+    "shape", "rest_shape", "edges", "reconstructed", "reprojection_px", "likelihood"};
+
 /// Builds and validates a trial from named arrays; errors name the file, row and array.
 trial::Trial assemble_trial(const ArrayReader& reader);
 

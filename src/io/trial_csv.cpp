@@ -1,13 +1,16 @@
 // CSV trial files (docs/trials.md): '#'-prefixed "key: value" metadata lines, one header row, one row per
 // frame. Lengths, angles and times in the units declared by "# units:"; empty cells and "nan" are NaN.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
+#include "vibrissa/core/checks.hpp"
 #include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
 
@@ -37,16 +40,9 @@ std::vector<std::string> split(const std::string& line, char sep) {
 
 double parse_number(const std::string& cell, const std::string& src, std::size_t row, const std::string& col) {
   if (cell.empty() || cell == "nan" || cell == "NaN" || cell == "NAN") return nan_v;
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(cell, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != cell.size())
-    throw std::invalid_argument(located_message(src, row, col, "cannot parse '" + cell + "' as a number"));
-  return v;
+  const std::optional<double> v = parse_decimal(cell);  // decimal only: "0x10" and trailing text are errors
+  if (!v) throw std::invalid_argument(located_message(src, row, col, "cannot parse '" + quote_text(cell) + "' as a number"));
+  return *v;
 }
 
 std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& src,
@@ -57,15 +53,30 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
   while (is >> tok) v.push_back(parse_number(tok, src, row, key));
   if (v.size() != count)
     throw std::invalid_argument(located_message(src, row, key, "expected " + std::to_string(count) +
-                                                                   " numbers, got '" + text + "'"));
+                                                                   " numbers, got '" + quote_text(text) + "'"));
   return v;
+}
+
+/// Reads one line of at most limits::max_csv_line_bytes.
+bool read_line(std::istream& in, std::string& line, const std::string& src, std::size_t line_no) {
+  if (!std::getline(in, line)) return false;
+  if (line.size() > limits::max_csv_line_bytes)
+    throw std::invalid_argument(located_message(src, line_no, "", "line of " + std::to_string(line.size()) +
+                                                                       " bytes is longer than the limit of " +
+                                                                       std::to_string(limits::max_csv_line_bytes)));
+  return true;
 }
 
 }  // namespace
 
 trial::Trial read_trial_csv(const std::string& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument(path + ": cannot open the trial file");
+  {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (!ec) require_at_most(size, limits::max_csv_file_bytes, path + ": file size in bytes");
+  }
   trial::Trial t;
   t.source = path;
   std::map<std::string, std::pair<std::string, std::size_t>> meta;  // key -> (value, line)
@@ -74,21 +85,26 @@ trial::Trial read_trial_csv(const std::string& path) {
   std::size_t line_no = 0;
   std::vector<std::string> header;
   std::size_t header_line = 0;
-  while (std::getline(in, line)) {
+  while (read_line(in, line, path, line_no + 1)) {
     ++line_no;
+    if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);  // UTF-8 byte order mark
     const std::string s = trim(line);
     if (s.empty()) continue;
     if (s[0] == '#') {
       const std::string body = trim(s.substr(1));
+      if (body.empty() || body[0] == '#') continue;  // "#" alone or "##": a free comment
       const auto colon = body.find(':');
-      if (colon == std::string::npos) continue;  // free comment
+      if (colon == std::string::npos)
+        throw std::invalid_argument(located_message(
+            path, line_no, "", "'" + quote_text(s) + "' is not a '# key: value' metadata line (free comments start with '##')"));
       const std::string key = trim(body.substr(0, colon)), value = trim(body.substr(colon + 1));
       if (key == "edge")
         edges.emplace_back(value, line_no);
       else if (key == "rest_point")
         rest_points.emplace_back(value, line_no);
-      else
-        meta[key] = {value, line_no};
+      else if (!meta.emplace(key, std::make_pair(value, line_no)).second)
+        throw std::invalid_argument(located_message(path, line_no, quote_text(key), "metadata key appears twice (first on line " +
+                                                                        std::to_string(meta[key].second) + ")"));
       continue;
     }
     header = split(s, ',');
@@ -96,6 +112,19 @@ trial::Trial read_trial_csv(const std::string& path) {
     break;
   }
   if (header.empty()) throw std::invalid_argument(path + ": no header row found");
+  {  // The format version: required, so that a future format is never misread as this one.
+    const auto it = meta.find("vibrissa-trial");
+    if (it == meta.end())
+      throw std::invalid_argument(located_message(path, 1, "vibrissa-trial",
+                                                  "the version line '# vibrissa-trial: 1' is missing"));
+    if (it->second.first != "1")
+      throw std::invalid_argument(located_message(path, it->second.second, "vibrissa-trial",
+                                                  "unknown format version '" + quote_text(it->second.first) +
+                                                      "' (this reader knows version 1)"));
+  }
+  require_at_most(header.size(), limits::max_shape_points, path + ": number of columns");
+  require_at_most(edges.size(), limits::max_edges, path + ": number of '# edge' lines");
+  require_at_most(rest_points.size(), limits::max_shape_points, path + ": number of '# rest_point' lines");
 
   // Units first: everything else depends on them.
   trial::Units& u = t.meta.declared_units;
@@ -104,13 +133,16 @@ trial::Trial read_trial_csv(const std::string& path) {
     meta_units_line = it->second.second;
     std::istringstream is(it->second.first);
     std::string kv;
+    std::set<std::string> seen;
     while (is >> kv) {
       const auto eq = kv.find('=');
       const std::string k = kv.substr(0, eq), v = eq == std::string::npos ? "" : kv.substr(eq + 1);
+      if (!seen.insert(k).second)
+        throw std::invalid_argument(located_message(path, it->second.second, "units", "unit kind '" + quote_text(k) + "' is given twice"));
       if (k == "length") u.length = v;
       else if (k == "angle") u.angle = v;
       else if (k == "time") u.time = v;
-      else throw std::invalid_argument(located_message(path, it->second.second, "units", "unknown unit kind '" + k + "'"));
+      else throw std::invalid_argument(located_message(path, it->second.second, "units", "unknown unit kind '" + quote_text(k) + "'"));
     }
     meta.erase(it);
   }
@@ -120,17 +152,25 @@ trial::Trial read_trial_csv(const std::string& path) {
   const double Ts = trial::time_scale(u.time, located_message(path, uline, "units", "time"));
 
   auto& mat = t.meta.material;
-  for (const auto& [key, vl] : meta) {
-    const auto& [value, ln] = vl;
+  for (const auto& entry : meta) {  // no structured bindings: clang 14 cannot capture them in the lambda
+    const std::string& key = entry.first;
+    const std::string& value = entry.second.first;
+    const std::size_t ln = entry.second.second;
     auto num = [&] { return parse_numbers(value, 1, path, ln, key)[0]; };
-    if (key == "vibrissa-trial" || key == "format") continue;
+    if (key == "vibrissa-trial") continue;
     if (key == "frame_rate_Hz") t.meta.frame_rate = num();
     else if (key == "youngs_modulus_Pa") mat.youngs_modulus = num();
     else if (key == "poisson_ratio") mat.poisson_ratio = num();
     else if (key == "base_radius") mat.base_radius = num() * Ls;
     else if (key == "taper_ratio") mat.taper_ratio = num();
-    else if (key == "links") mat.links = static_cast<int>(num());
-    else throw std::invalid_argument(located_message(path, ln, key, "unknown metadata key"));
+    else if (key == "links") {
+      try {
+        mat.links = require_integer(num(), 2, limits::max_links, "links");
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(located_message(path, ln, key, e.what()));
+      }
+    }
+    else throw std::invalid_argument(located_message(path, ln, quote_text(key), "unknown metadata key"));
   }
   for (const auto& [value, ln] : edges) {
     const auto v = parse_numbers(value, 6, path, ln, "edge");
@@ -148,7 +188,7 @@ trial::Trial read_trial_csv(const std::string& path) {
   std::map<std::string, std::size_t> col;
   for (std::size_t c = 0; c < header.size(); ++c) {
     if (col.count(header[c]))
-      throw std::invalid_argument(located_message(path, header_line, header[c], "column appears twice"));
+      throw std::invalid_argument(located_message(path, header_line, quote_text(header[c]), "column appears twice"));
     col[header[c]] = c;
   }
   auto require = [&](const char* name) {
@@ -177,14 +217,16 @@ trial::Trial read_trial_csv(const std::string& path) {
                        name == "contact" || name.rfind("base_", 0) == 0 || name.rfind("contact_", 0) == 0 ||
                        name.rfind("shape_", 0) == 0 || name == "reconstructed" || name == "reprojection_px" ||
                        name == "likelihood";
-    if (!known) throw std::invalid_argument(located_message(path, header_line, name, "unknown column"));
+    if (!known) throw std::invalid_argument(located_message(path, header_line, quote_text(name), "unknown column"));
   }
 
   std::vector<std::size_t> rows;
-  while (std::getline(in, line)) {
+  while (read_line(in, line, path, line_no + 1)) {
     ++line_no;
     const std::string s = trim(line);
     if (s.empty() || s[0] == '#') continue;
+    if (rows.size() == limits::max_trial_frames)
+      require_at_most(rows.size() + 1, limits::max_trial_frames, path + ": number of frames");
     const auto cells = split(s, ',');
     if (cells.size() != header.size())
       throw std::invalid_argument(located_message(path, line_no, "",
@@ -200,7 +242,7 @@ trial::Trial read_trial_csv(const std::string& path) {
     const double flag = get(c_contact);
     if (!(flag == 0.0 || flag == 1.0))
       throw std::invalid_argument(located_message(path, line_no, "contact",
-                                                  "contact flag must be 0 or 1, got '" + cells[c_contact] + "'"));
+                                                  "contact flag must be 0 or 1, got '" + quote_text(cells[c_contact]) + "'"));
     t.contact.push_back(static_cast<std::uint8_t>(flag));
     if (col.count("reconstructed")) {
       const double r = get(col["reconstructed"]);

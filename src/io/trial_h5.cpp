@@ -2,6 +2,7 @@
 #include <stdexcept>
 
 #include "h5_file.hpp"
+#include "vibrissa/core/checks.hpp"
 #include "trial_arrays.hpp"
 #include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
@@ -12,6 +13,16 @@ trial::Trial read_trial_h5(const std::string& path) {
   h5::QuietErrors quiet;
   h5::Handle file = h5::open_file_read(path);
   const hid_t root = file.get();
+  for (const std::string& name : h5::member_names(root)) {
+    bool known = false;
+    for (const char* k : trial_array_names) known = known || name == k;
+    if (!known) {
+      std::string expected;
+      for (const char* k : trial_array_names) expected += std::string(expected.empty() ? "" : ", ") + k;
+      throw std::invalid_argument(
+          trial::located_message(path, 0, quote_text(name), "unknown dataset (expected one of " + expected + ")"));
+    }
+  }
   ArrayReader r;
   r.source = path;
   r.array = [&](const std::string& name) -> std::optional<NamedArray> {

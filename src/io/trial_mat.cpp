@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "trial_arrays.hpp"
+#include "vibrissa/core/limits.hpp"
 #include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
 
@@ -36,8 +37,12 @@ NamedArray to_array(const matvar_t* v, const std::string& src, const std::string
   NamedArray a;
   for (int k = 0; k < v->rank; ++k) {
     a.dims.push_back(v->dims[k]);
+    if (v->dims[k] > limits::max_array_elements || count * v->dims[k] > limits::max_array_elements)
+      throw std::invalid_argument(src + ": column '" + name + "': more than " +
+                                  std::to_string(limits::max_array_elements) + " values (docs/formats.md, \"Limits\")");
     count *= v->dims[k];
   }
+  if (v->isComplex) throw std::invalid_argument(src + ": column '" + name + "': complex data are not supported");
   std::vector<double> col;
   if (count > 0 && v->data == nullptr)
     throw std::invalid_argument(src + ": column '" + name + "': variable has no data");
@@ -54,7 +59,6 @@ NamedArray to_array(const matvar_t* v, const std::string& src, const std::string
     case MAT_C_UINT64: copy_as_double<std::uint64_t>(v->data, count, col); break;
     default: throw std::invalid_argument(src + ": column '" + name + "': variable is not a real numeric array");
   }
-  if (v->isComplex) throw std::invalid_argument(src + ": column '" + name + "': complex data are not supported");
   // Column-major (MATLAB) -> row-major: element (i0, i1, ...) sits at i0 + d0 (i1 + d1 (...)).
   a.data.resize(count);
   const std::size_t rank = a.dims.size();

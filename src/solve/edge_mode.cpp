@@ -2,16 +2,17 @@
 // the contact lies on the line, and the force is normal to the line (it is normal to the whisker by
 // construction). The whisker is pushed, never pulled (docs/conventions.md, "Contact side").
 #include <cmath>
+#include <limits>
 
 #include "edge_problem.hpp"
+#include "solution_check.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
 
 void validate(const Edge& edge) {
   require_finite(edge.point, "edge.point");
-  require_finite(edge.direction, "edge.direction");
-  if (!(edge.direction.norm() > 0.0)) throw std::invalid_argument("edge.direction must be non-zero, got [0, 0, 0]");
+  require_normalizable(edge.direction, "edge.direction");
 }
 
 namespace detail {
@@ -35,6 +36,7 @@ void check_contact_side(const Whisker& w, const Placement& X, const std::optiona
 Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std::optional<double> hint,
                     const SolveOptions& options, const LoadState* warm,
                     const std::optional<Eigen::Vector3d>& approach_W) {
+  validate(options);
   validate(edge);
   if (hint) require_finite(*hint, "load.arc_length_hint");
   if (approach_W) require_finite(*approach_W, "load.approach");
@@ -67,7 +69,7 @@ Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std:
     off.fold = a.folded;
     off.iterations = a.lm.iterations;
     off.arc_length = std::min(a.lm.u[2] * sc.length, w.length());
-    return off;
+    return detail::checked_solution(std::move(off), options.tolerance, w, X, options);
   }
   Solution out;
   detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge.direction.normalized(), out);
@@ -88,7 +90,7 @@ Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std:
       }
     }
   }
-  return out;
+  return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
 }
 
 }  // namespace vibrissa

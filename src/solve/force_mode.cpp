@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "contact_problem.hpp"
+#include "solution_check.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
@@ -11,16 +12,15 @@ namespace {
 void check_arc_length(const Whisker& w, double s) {
   require_finite(s, "load.arc_length");
   if (!(s > 0.0 && s <= w.length() * (1.0 + 1e-12)))
-    throw std::invalid_argument("load.arc_length must lie in (0, L = " + std::to_string(w.length()) +
-                                "] m, got " + std::to_string(s));
+    invalid_input("load.arc_length must lie in (0, L = " + format_value(w.length()) + "] m, got " + format_value(s));
 }
 }  // namespace
 
 Solution solve_force(const Whisker& w, const Placement& X, double force, double arc_length, double angle,
                      const SolveOptions& options) {
+  validate(options);
   require_finite(force, "load.force");
-  if (force < 0.0) throw std::invalid_argument("load.force must be >= 0 (use angle to set direction), got " +
-                                               std::to_string(force));
+  if (force < 0.0) invalid_input("load.force must be >= 0 (use angle to set direction), got " + format_value(force));
   require_finite(angle, "load.angle");
   check_arc_length(w, arc_length);
   LoadState state;
@@ -29,11 +29,12 @@ Solution solve_force(const Whisker& w, const Placement& X, double force, double 
   Solution out;
   detail::fill_solution(w, X, state, options, std::nullopt, out);
   detail::set_status(out, Status::converged, "explicit force-mode evaluation");
-  return out;
+  return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
 }
 
 Solution solve_dead_load(const Whisker& w, const Placement& X, const Eigen::Vector3d& force_W, double arc_length,
                          const SolveOptions& options, const LoadState* warm) {
+  validate(options);
   require_finite(force_W, "load.force");
   check_arc_length(w, arc_length);
   const detail::Scales sc(w);
@@ -44,6 +45,10 @@ Solution solve_dead_load(const Whisker& w, const Placement& X, const Eigen::Vect
   // Start from the rest-frame components of the load (or the warm state).
   Eigen::Vector3d u0 = w.rest_link_frames_B()[static_cast<std::size_t>(k)].transpose() * target_B;
   if (warm) u0 = Eigen::Vector3d(warm->force_x, warm->force_y, warm->force_z) / sc.force;
+  // Scaled tolerance on the force residual: the length tolerance over L, or 1e-14 of the load if larger.
+  auto dead_load_tolerance = [&](const Eigen::Vector3d& goal) {
+    return std::max(options.tolerance / sc.length, 1e-14 * std::max(1.0, goal.stableNorm()));  // no overflow
+  };
   auto solve_for = [&](const Eigen::Vector3d& goal, const Eigen::Vector3d& start) {
     auto residual = [&](const auto& u) {
       using S = std::decay_t<decltype(u[0])>;
@@ -52,7 +57,7 @@ Solution solve_dead_load(const Whisker& w, const Placement& X, const Eigen::Vect
       return std::array<S, 3>{c.force_B.x / sc.force - goal.x(), c.force_B.y / sc.force - goal.y(),
                               c.force_B.z / sc.force - goal.z()};
     };
-    const double tol = std::max(options.tolerance / sc.length, 1e-14 * std::max(1.0, goal.norm()));
+    const double tol = dead_load_tolerance(goal);
     return detail::levenberg_marquardt(residual, start, detail::LMBounds{}, tol, options.max_iterations);
   };
   auto lm = solve_for(target_B, u0);
@@ -77,7 +82,7 @@ Solution solve_dead_load(const Whisker& w, const Placement& X, const Eigen::Vect
   detail::set_status(out, lm.converged ? Status::converged : Status::not_converged,
                      lm.converged ? "dead load: follower equivalent found (residual in N)"
                                   : "dead load: no equilibrium found within the iteration limit (residual in N)");
-  return out;
+  return detail::checked_solution(std::move(out), dead_load_tolerance(target_B) * sc.force, w, X, options);
 }
 
 }  // namespace vibrissa

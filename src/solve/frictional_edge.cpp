@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "edge_problem.hpp"
+#include "solution_check.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
@@ -15,9 +16,10 @@ namespace vibrissa {
 Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge& edge, double mu,
                                const Eigen::Vector3d& previous_contact_W, const SolveOptions& options,
                                const LoadState* warm, const std::optional<Eigen::Vector3d>& approach_W) {
+  validate(options);
   validate(edge);
   require_finite(mu, "friction_coefficient");
-  if (mu < 0.0) throw std::invalid_argument("friction_coefficient must be >= 0, got " + std::to_string(mu));
+  if (mu < 0.0) invalid_input("friction_coefficient must be >= 0, got " + format_value(mu));
   require_finite(previous_contact_W, "previous_contact");
   const Eigen::Vector3d d = edge.direction.normalized();
   const Eigen::Vector3d q_prev = edge.point + (previous_contact_W - edge.point).dot(d) * d;
@@ -35,7 +37,7 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
     out.friction = s.status == Status::converged ? friction : FrictionState::none;
     out.iterations = s.iterations;
     out.residual = s.residual;
-    return out;
+    return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
   };
   if (free.status != Status::converged) return finish(free, FrictionState::none, free.message);
   if (mu == 0.0) return finish(free, FrictionState::slip, "frictionless: slipping on the edge");
@@ -75,7 +77,7 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
                                    ? "slip: equilibrium would need contact beyond the tip"
                                    : "slip: no frictional equilibrium within the iteration limit"));
   detail::check_contact_side(w, X, approach_W, out);
-  return out;
+  return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
 }
 
 }  // namespace vibrissa

@@ -8,6 +8,7 @@
 #include <Eigen/QR>
 
 #include "contact_problem.hpp"
+#include "solution_check.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
@@ -82,11 +83,12 @@ Eigen::Vector3d fixed_arc_length_start(const Whisker& w, const detail::Scales& s
 Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d& point_W, std::optional<double> hint,
                      const SolveOptions& options, const LoadState* warm,
                      const std::optional<Eigen::Vector3d>& edge_direction_W) {
+  validate(options);
   require_finite(point_W, "load.point");
   if (hint) require_finite(*hint, "load.arc_length_hint");
   if (edge_direction_W) {
     require_finite(*edge_direction_W, "load.edge_direction");
-    if (!(edge_direction_W->norm() > 0.0)) throw std::invalid_argument("load.edge_direction must be non-zero");
+    require_normalizable(*edge_direction_W, "load.edge_direction");
   }
   const detail::Scales sc(w);
   const Eigen::Vector3d target_B = X.to_body(point_W);
@@ -158,7 +160,7 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
           (!out.other_root_arc_length ||
            std::abs(r.arc_length - out.arc_length) < std::abs(*out.other_root_arc_length - out.arc_length)))
         out.other_root_arc_length = r.arc_length;
-  return out;
+  return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
 }
 
 }  // namespace vibrissa

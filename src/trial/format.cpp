@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "vibrissa/core/checks.hpp"
+
 namespace vibrissa::trial {
 
 namespace {
@@ -12,11 +14,7 @@ namespace {
                        const std::string& message) {
   throw std::invalid_argument(located_message(source, row, column, message));
 }
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
+std::string fmt(double v) { return format_value(v); }
 }  // namespace
 
 std::string located_message(const std::string& source, std::size_t row, const std::string& column,
@@ -93,6 +91,9 @@ WhiskerProperties whisker_properties(const TrialMaterial& m) {
 void validate(const Trial& t, const std::vector<std::size_t>* file_rows) {
   const std::string& src = t.source;
   const std::size_t n = t.time.size();
+  if (n > limits::max_trial_frames)
+    fail(src, 0, "time", "has " + std::to_string(n) + " frames, more than the limit of " +
+                             std::to_string(limits::max_trial_frames));
   auto row = [&](std::size_t i) { return file_rows && i < file_rows->size() ? (*file_rows)[i] : i + 1; };
   if (n == 0) fail(src, 0, "time", "the trial has no frames");
   auto same_size = [&](std::size_t size, const char* column, bool optional) {
@@ -140,24 +141,44 @@ void validate(const Trial& t, const std::vector<std::size_t>* file_rows) {
   const auto& m = t.meta;
   if (m.rest_shape.size() < 3)
     fail(src, 0, "rest_shape", "needs at least 3 points, got " + std::to_string(m.rest_shape.size()));
-  for (std::size_t k = 0; k < m.rest_shape.size(); ++k)
+  if (m.rest_shape.size() > limits::max_shape_points)
+    fail(src, 0, "rest_shape", "has " + std::to_string(m.rest_shape.size()) + " points, more than the limit of " +
+                                   std::to_string(limits::max_shape_points));
+  double rest_length = 0.0;
+  for (std::size_t k = 0; k < m.rest_shape.size(); ++k) {
     if (!m.rest_shape[k].allFinite()) fail(src, k + 1, "rest_shape", "point is not finite");
+    if (k == 0) continue;
+    const double chord = (m.rest_shape[k] - m.rest_shape[k - 1]).norm();
+    if (!(chord > 0.0))
+      fail(src, k + 1, "rest_shape", "point " + format_value(m.rest_shape[k]) + " repeats the previous point");
+    rest_length += chord;
+  }
+  if (!(rest_length >= limits::min_whisker_length_m && rest_length <= limits::max_whisker_length_m))
+    fail(src, 0, "rest_shape", "the whisker's length must lie in [" + fmt(limits::min_whisker_length_m) + ", " +
+                                   fmt(limits::max_whisker_length_m) + "] m, got " + fmt(rest_length) + " m");
   if (m.edges.empty()) fail(src, 0, "edges", "the trial names no object edge");
+  if (m.edges.size() > limits::max_edges)
+    fail(src, 0, "edges", "has " + std::to_string(m.edges.size()) + " edges, more than the limit of " +
+                              std::to_string(limits::max_edges));
   for (std::size_t k = 0; k < m.edges.size(); ++k) {
     const auto& e = m.edges[k];
-    if (!e.point.allFinite() || !e.direction.allFinite() || e.direction.norm() == 0.0)
-      fail(src, k + 1, "edges", "edge needs a finite point and a non-zero finite direction");
+    const double n2 = e.direction.squaredNorm();
+    if (!e.point.allFinite() || !e.direction.allFinite() || !(n2 >= 1e-300 && n2 <= 1e300))
+      fail(src, k + 1, "edges", "edge needs a finite point and a non-zero finite direction, got point " +
+                                    format_value(e.point) + ", direction " + format_value(e.direction));
   }
-  auto positive = [&](double v, const char* field) {
-    if (!(std::isfinite(v) && v > 0.0)) fail(src, 0, field, "must be positive, got " + fmt(v));
+  auto in_range = [&](double v, double lo, double hi, const char* field) {
+    if (!(v >= lo && v <= hi)) fail(src, 0, field, "must lie in [" + fmt(lo) + ", " + fmt(hi) + "], got " + fmt(v));
   };
-  positive(m.material.youngs_modulus, "youngs_modulus_Pa");
-  positive(m.material.base_radius, "base_radius");
-  positive(m.material.taper_ratio, "taper_ratio");
-  positive(m.frame_rate, "frame_rate_Hz");
+  in_range(m.material.youngs_modulus, limits::min_youngs_modulus_Pa, limits::max_youngs_modulus_Pa, "youngs_modulus_Pa");
+  in_range(m.material.base_radius, limits::min_radius_m, limits::max_radius_m, "base_radius");
+  in_range(m.material.taper_ratio, 1.0 / limits::max_taper_ratio, limits::max_taper_ratio, "taper_ratio");
+  if (!(std::isfinite(m.frame_rate) && m.frame_rate > 0.0)) fail(src, 0, "frame_rate_Hz", "must be positive, got " + fmt(m.frame_rate));
   if (!(m.material.poisson_ratio > -1.0 && m.material.poisson_ratio < 0.5))
     fail(src, 0, "poisson_ratio", "must lie in (-1, 0.5), got " + fmt(m.material.poisson_ratio));
-  if (m.material.links < 2) fail(src, 0, "links", "must be >= 2, got " + std::to_string(m.material.links));
+  if (m.material.links < 2 || m.material.links > limits::max_links)
+    fail(src, 0, "links", "must be an integer in [2, " + std::to_string(limits::max_links) + "], got " +
+                              std::to_string(m.material.links));
 }
 
 }  // namespace vibrissa::trial

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "vibrissa/core/checks.hpp"
 #include "vibrissa/trial/filter.hpp"
 #include "vibrissa/trial/statistics.hpp"
 
@@ -32,6 +33,12 @@ Preprocessed preprocess(const Trial& input, const PreprocessOptions& opt) {
     out.zeta_source = "not tracked: 0";
   }
 
+  if (opt.filter && n >= 2 && !(opt.cutoff_hz > 0.0 && opt.cutoff_hz < 0.5 * out.sample_rate_hz))
+    throw std::invalid_argument(located_message(
+        t.source, 0, "time",
+        "the median time step " + format_value(1.0 / out.sample_rate_hz) + " s gives a sample rate of " +
+            format_value(out.sample_rate_hz) + " Hz; the filter cutoff " + format_value(opt.cutoff_hz) +
+            " Hz must lie in (0, sample rate / 2) (check the time unit, --cutoff, or use --no-filter)"));
   if (opt.filter && n >= 2) {
     const Butterworth f = design_butterworth_lowpass(opt.cutoff_hz, out.sample_rate_hz, opt.filter_order);
     t.theta = filtfilt(f, t.theta);

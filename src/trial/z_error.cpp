@@ -49,6 +49,7 @@ ZErrorAnalysis analyse_z_error(const PipelineResult& r, double whisker_length, d
   const auto& mat = r.pre.trial.meta.material;
   a.mu_eq7 = mu;
   a.cone_length = cone_length(whisker_length, mat.base_radius, mat.taper_ratio);
+  if (!std::isfinite(a.cone_length)) a.cone_length = std::nan("");  // no cone: taper ratio 1
   const std::size_t n = r.frames.size();
   a.measured.assign(n, std::nan(""));
   a.eq6.assign(n, std::nan(""));
@@ -70,7 +71,9 @@ ZErrorAnalysis analyse_z_error(const PipelineResult& r, double whisker_length, d
     if (cp.ok() && ed.ok()) {
       a.measured[i] = ed.height - cp.height;
       diffs.push_back(std::abs(a.measured[i]));
-      if (!f.period_edge) {
+      // Eqs. (5)-(7) need a cone (taper ratio > 1): without one the predictions are not finite and stay
+      // out of the fits, which are then absent rather than NaN.
+      if (!f.period_edge && std::isfinite(a.eq6[i]) && std::isfinite(a.eq7[i])) {
         a.used[i] = true;
         x.push_back(a.measured[i]);
         y6.push_back(a.eq6[i]);

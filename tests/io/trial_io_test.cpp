@@ -80,7 +80,7 @@ std::string error_of(const std::string& path) {
 }
 
 const char* good_csv =
-    "# units: length=mm angle=deg time=ms\n"
+    "# vibrissa-trial: 1\n# units: length=mm angle=deg time=ms\n"
     "# edge: 20 10 0 0 0 1\n"
     "# rest_point: 0 0 0\n# rest_point: 10 0.2 0\n# rest_point: 20 0.8 0\n"
     "time,base_x,base_y,base_z,theta,phi,zeta,contact,contact_x,contact_y,contact_z\n"
@@ -140,27 +140,27 @@ TEST(TrialIo, BadCsvFilesNameFileRowAndColumn) {
     }
     const std::string msg = error_of(write_text(d, "missing.csv", out));
     EXPECT_NE(msg.find("missing.csv"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("row 6"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("row 7"), std::string::npos) << msg;
     EXPECT_NE(msg.find("'phi'"), std::string::npos) << msg;
   }
   {  // NaN in a required column: row 8 is the second data row.
     std::string m = text;
     m.replace(m.find("1,0,0,0,11"), 10, "1,0,nan,0,11");
     const std::string msg = error_of(write_text(d, "nan.csv", m));
-    EXPECT_NE(msg.find("nan.csv: row 8, column 'base_y'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("nan.csv: row 9, column 'base_y'"), std::string::npos) << msg;
   }
   {  // Non-increasing time at the third data row.
     std::string m = text;
     m.replace(m.find("\n2,0,0,0,12"), 11, "\n1,0,0,0,12");
     const std::string msg = error_of(write_text(d, "time.csv", m));
-    EXPECT_NE(msg.find("time.csv: row 9, column 'time'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("time.csv: row 10, column 'time'"), std::string::npos) << msg;
     EXPECT_NE(msg.find("increase"), std::string::npos) << msg;
   }
   {  // Unknown units.
     std::string m = text;
     m.replace(m.find("length=mm"), 9, "length=in");
     const std::string msg = error_of(write_text(d, "units.csv", m));
-    EXPECT_NE(msg.find("units.csv: row 1, column 'units'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("units.csv: row 2, column 'units'"), std::string::npos) << msg;
     EXPECT_NE(msg.find("'in'"), std::string::npos) << msg;
   }
   {  // No contact period.
@@ -176,13 +176,13 @@ TEST(TrialIo, BadCsvFilesNameFileRowAndColumn) {
     std::string m = text;
     m.replace(m.find("1,20,10,2"), 9, "1,20,,2");
     const std::string msg = error_of(write_text(d, "cp.csv", m));
-    EXPECT_NE(msg.find("cp.csv: row 9, column 'contact_y'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("cp.csv: row 10, column 'contact_y'"), std::string::npos) << msg;
   }
   {  // Unparseable cell.
     std::string m = text;
     m.replace(m.find("3,0,0,0,13"), 10, "3,0,0,0,abc");
     const std::string msg = error_of(write_text(d, "parse.csv", m));
-    EXPECT_NE(msg.find("parse.csv: row 10, column 'theta'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("parse.csv: row 11, column 'theta'"), std::string::npos) << msg;
   }
   EXPECT_NE(error_of((d / "trial.txt").string()).find("unknown trial format"), std::string::npos);
 }

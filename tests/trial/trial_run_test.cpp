@@ -111,3 +111,17 @@ TEST(TrialRun, CountsContactFramesAndMatchesThePipelineBitForBit) {
   }
   EXPECT_GT(run.pipeline_seconds, 0.0);
 }
+
+TEST(TrialRun, UntaperedWhiskerHasNoZErrorFitsRatherThanNaN) {
+  // Once: taper_ratio 1 (no cone for eq. 5) printed "slope -nan" and wrote null fits.
+  SynthOptions so;
+  so.duration = 0.3;
+  Trial t = synthesize_trial(so);
+  t.meta.material.taper_ratio = 1.0;
+  const TrialRun run = run_trial(t, run_options(TrialFlags{}));
+  ASSERT_TRUE(run.analysis.z_error.has_value());
+  const ZErrorAnalysis& z = *run.analysis.z_error;
+  EXPECT_FALSE(z.fit_eq6.all.has_value());
+  EXPECT_FALSE(z.fit_eq7.all.has_value());
+  EXPECT_TRUE(std::none_of(z.used.begin(), z.used.end(), [](bool u) { return u; }));
+}

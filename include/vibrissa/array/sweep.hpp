@@ -35,4 +35,8 @@ struct PitchSummary {
 WhiskerRunSummary summarize_run(const ArrayResult& result, std::size_t pitch, std::size_t whisker);
 std::vector<PitchSummary> summarize_pitches(const ArrayResult& result);
 
+/// Plausibility warnings of a finished run (core/plausibility.hpp): a scene in which no whisker ever
+/// touches an object (objects out of reach, or placed in mm-vs-m confusion).
+std::vector<std::string> array_warnings(const ArrayResult& result);
+
 }  // namespace vibrissa::array

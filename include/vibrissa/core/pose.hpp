@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "vibrissa/core/checks.hpp"
+
 namespace vibrissa {
 
 struct Pose {
@@ -44,10 +46,7 @@ struct Placement {
   }
 };
 
-/// Throws std::invalid_argument naming `field` unless every component is finite.
-void require_finite(const Eigen::Vector3d& v, const char* field);
-void require_finite(double v, const char* field);
-void require_positive(double v, const char* field);
+/// Throws std::invalid_argument naming the field unless every value is finite.
 void validate(const Pose& pose);
 
 }  // namespace vibrissa

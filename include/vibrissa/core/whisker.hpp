@@ -6,6 +6,7 @@
 // writes only into caller-owned storage.
 #include <array>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -42,6 +43,11 @@ struct WhiskerProperties {
 };
 
 void validate(const WhiskerProperties& props);
+
+class Whisker;
+/// Throws std::invalid_argument naming `source` unless the built whisker is usable: arc length within
+/// limits (core/limits.hpp), every link of positive finite length, every joint compliance finite.
+void check_rest_geometry(const Whisker& whisker, std::string_view source);
 
 class Whisker {
  public:

@@ -63,8 +63,11 @@ Case case_from_json(const nlohmann::json& j);
 Solution solve_case(const Case& c);
 
 nlohmann::json solution_to_json(const Solution& s);
-/// The result of `vibrissa solve`: solution_to_json, plus a "base_wrench" object for that mode.
+/// The result file of `vibrissa solve`: solution_to_json, a "base_wrench" object for that mode, and
+/// "warnings", the plausibility warnings of the case's whisker (core/plausibility.hpp; empty when none).
 nlohmann::json solve_case_to_json(const Case& c);
+/// solution_to_json plus the case's "warnings".
+nlohmann::json case_result_to_json(const Case& c, const Solution& s);
 /// The inverse's result: solution_to_json of the returned fit plus "base_wrench" (roots, identifiability).
 nlohmann::json base_wrench_to_json(const BaseWrenchResult& r);
 BaseWrenchOptions base_wrench_options(const BaseWrenchLoad& load, const SolveOptions& options);

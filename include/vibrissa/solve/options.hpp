@@ -12,6 +12,10 @@ struct SolveOptions {
   bool find_other_roots = false;  ///< probe for a second root and report it (costs ~2 extra solves)
 };
 
+/// Throws std::invalid_argument naming the field unless tolerance lies in (0, 1e-3] and max_iterations in
+/// [1, limits::max_iterations]. Every solve checks its options.
+void validate(const SolveOptions& options);
+
 /// A straight edge: the infinite line through `point` along `direction` (world frame). A peg is one edge.
 struct Edge {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();            ///< [m]

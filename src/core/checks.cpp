@@ -1,0 +1,111 @@
+#include "vibrissa/core/checks.hpp"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+namespace vibrissa {
+
+std::string format_value(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::array<char, 64> buf{};
+  const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), v);  // shortest round trip
+  if (ec != std::errc()) return "?";
+  return std::string(buf.data(), end);
+}
+
+std::string format_value(const Eigen::Vector3d& v) {
+  std::string out = "[";
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    if (i > 0) out.append(", ");
+    out.append(format_value(v[i]));
+  }
+  out.append("]");
+  return out;
+}
+
+std::string quote_text(std::string_view text) {
+  const std::size_t n = std::min(text.size(), limits::max_quoted_chars);
+  std::string out;
+  out.reserve(n + 32);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    out.push_back(c < 0x20 || c == 0x7f ? '?' : text[i]);
+  }
+  if (n < text.size()) {
+    out.append("... (");
+    out.append(std::to_string(text.size()));
+    out.append(" bytes)");
+  }
+  return out;
+}
+
+std::optional<double> parse_decimal(std::string_view text) {
+  if (text.empty()) return std::nullopt;
+  const char* first = text.data() + (text[0] == '+' ? 1 : 0);
+  const char* last = text.data() + text.size();
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(first, last, v, std::chars_format::general);
+  if (ec != std::errc() || end != last || first == last) return std::nullopt;
+  return v;
+}
+
+void invalid_input(const std::string& message) { throw std::invalid_argument(message); }
+
+void require_finite(double v, std::string_view field) {
+  if (!std::isfinite(v)) invalid_input(std::string(field) + " must be finite, got " + format_value(v));
+}
+
+void require_finite(const Eigen::Vector3d& v, std::string_view field) {
+  if (!v.allFinite()) invalid_input(std::string(field) + " must be finite, got " + format_value(v));
+}
+
+void require_positive(double v, std::string_view field) {
+  if (!(std::isfinite(v) && v > 0.0))
+    invalid_input(std::string(field) + " must be a positive finite number, got " + format_value(v));
+}
+
+void require_in_range(double v, double lo, double hi, std::string_view field) {
+  if (!(v >= lo && v <= hi))
+    invalid_input(std::string(field) + " must lie in [" + format_value(lo) + ", " + format_value(hi) + "], got " +
+                  format_value(v));
+}
+
+int require_integer(double v, int lo, int hi, std::string_view field) {
+  if (!(v >= lo && v <= hi && v == std::floor(v)))
+    invalid_input(std::string(field) + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                  "], got " + format_value(v));
+  return static_cast<int>(v);
+}
+
+void require_at_most(std::size_t count, std::size_t max, std::string_view what) {
+  if (count > max)
+    invalid_input(std::string(what) + ": " + std::to_string(count) + " is more than the limit of " +
+                  std::to_string(max) + " (docs/formats.md, \"Limits\")");
+}
+
+void require_normalizable(const Eigen::Vector3d& v, std::string_view field) {
+  require_finite(v, field);
+  const double n2 = v.squaredNorm();
+  if (!(n2 >= std::numeric_limits<double>::min() && n2 <= std::numeric_limits<double>::max()))
+    invalid_input(std::string(field) + " must be non-zero with a length between 1e-150 and 1e150 (a unit vector " +
+                  "is best), got " + format_value(v));
+}
+
+Eigen::Vector3d unit_direction(const Eigen::Vector3d& v, std::string_view field) {
+  require_finite(v, field);
+  const double largest = v.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0)) invalid_input(std::string(field) + " must be non-zero, got " + format_value(v));
+  const double n2 = v.squaredNorm();
+  if (n2 >= std::numeric_limits<double>::min() && n2 <= std::numeric_limits<double>::max()) return v / std::sqrt(n2);
+  return (v / largest).normalized();  // tiny or huge: rescale first so the norm neither underflows nor overflows
+}
+
+void internal_error(const char* condition, const char* file, int line) {
+  throw InternalError(std::string("vibrissa internal error (a bug, please report it): ") + condition +
+                      " failed at " + file + ":" + std::to_string(line));
+}
+
+}  // namespace vibrissa

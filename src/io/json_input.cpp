@@ -1,0 +1,101 @@
+#include "vibrissa/io/json_input.hpp"
+
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <stdexcept>
+
+#include "vibrissa/core/checks.hpp"
+
+namespace vibrissa::io {
+
+using nlohmann::json;
+
+nlohmann::json parse_json_text(std::string_view text, const std::string& source, bool allow_comments) {
+  // nlohmann stops at a NUL byte as if the input ended there; JSON text never holds a raw NUL.
+  if (const auto nul = text.find('\0'); nul != std::string_view::npos)
+    invalid_input(source + ": not valid JSON: NUL byte at offset " + std::to_string(nul));
+  // The parser itself is iterative; depth and duplicate keys are checked as it goes, before any recursive
+  // operation (dump, copy, comparison) could see a deep document.
+  std::vector<std::set<std::string>> keys;  // one entry per open container (empty for arrays)
+  const json::parser_callback_t check = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        keys.emplace_back();
+        if (keys.size() > static_cast<std::size_t>(limits::max_json_depth))
+          invalid_input(source + ": JSON nested deeper than " + std::to_string(limits::max_json_depth) + " levels");
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end: keys.pop_back(); break;
+      case json::parse_event_t::key:
+        if (!keys.back().insert(parsed.get<std::string>()).second)
+          invalid_input(source + ": duplicate key \"" + quote_text(parsed.get<std::string>()) +
+                        "\" in one JSON object (the earlier value would be ignored)");
+        break;
+      case json::parse_event_t::value: break;
+    }
+    return true;
+  };
+  try {
+    return json::parse(text.begin(), text.end(), check, true, allow_comments);
+  } catch (const json::exception& e) {
+    invalid_input(source + ": not valid JSON: " + quote_text(e.what()));
+  }
+}
+
+nlohmann::json read_json_input(const std::filesystem::path& path, bool allow_comments) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) invalid_input("cannot open '" + path.string() + "'");
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) require_at_most(size, limits::max_json_file_bytes, "'" + path.string() + "': file size in bytes");
+  std::string text;
+  text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  require_at_most(text.size(), limits::max_json_file_bytes, "'" + path.string() + "': file size in bytes");
+  return parse_json_text(text, "'" + path.string() + "'", allow_comments);
+}
+
+std::string describe(const nlohmann::json& j) {
+  return quote_text(j.dump(-1, ' ', false, json::error_handler_t::replace));
+}
+
+double json_number(const nlohmann::json& j, std::string_view field) {
+  if (!j.is_number()) invalid_input(std::string(field) + " must be a number, got " + describe(j));
+  const double v = j.get<double>();
+  require_finite(v, field);
+  return v;
+}
+
+int json_integer(const nlohmann::json& j, std::string_view field, int lo, int hi) {
+  if (!j.is_number()) invalid_input(std::string(field) + " must be an integer, got " + describe(j));
+  return require_integer(j.get<double>(), lo, hi, field);
+}
+
+bool json_bool(const nlohmann::json& j, std::string_view field) {
+  if (!j.is_boolean()) invalid_input(std::string(field) + " must be true or false, got " + describe(j));
+  return j.get<bool>();
+}
+
+std::string json_string(const nlohmann::json& j, std::string_view field) {
+  if (!j.is_string()) invalid_input(std::string(field) + " must be a string, got " + describe(j));
+  return j.get<std::string>();
+}
+
+Eigen::Vector3d json_vec3(const nlohmann::json& j, std::string_view field) {
+  if (!j.is_array() || j.size() != 3) invalid_input(std::string(field) + " must be an array of 3 numbers, got " + describe(j));
+  Eigen::Vector3d v;
+  for (std::size_t i = 0; i < 3; ++i) v[static_cast<Eigen::Index>(i)] = json_number(j[i], std::string(field) + "[" + std::to_string(i) + "]");
+  return v;
+}
+
+std::vector<double> json_numbers(const nlohmann::json& j, std::string_view field, std::size_t max_size) {
+  if (!j.is_array()) invalid_input(std::string(field) + " must be an array of numbers, got " + describe(j));
+  require_at_most(j.size(), max_size, std::string(field) + ": number of values");
+  std::vector<double> out;
+  out.reserve(j.size());
+  for (std::size_t i = 0; i < j.size(); ++i) out.push_back(json_number(j[i], std::string(field) + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+}  // namespace vibrissa::io
