@@ -61,6 +61,9 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
   auto done = [tolerance, &bounds](const Eigen::Vector3d& u_, const Vec& r_, const Jac& J_) {
     if (r_.cwiseAbs().maxCoeff() <= tolerance) return true;
     if constexpr (M == 3) {
+      (void)bounds;  // square systems converge on the residual alone
+      (void)u_;
+      (void)J_;
       return false;
     } else {
       Eigen::Vector3d g_ = J_.transpose() * r_;
