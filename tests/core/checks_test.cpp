@@ -1,6 +1,8 @@
 // Input checks vs invariants (core/checks.hpp), the model's geometry checks and plausibility warnings.
 #include <gtest/gtest.h>
 
+#include "test_helpers.hpp"
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -12,15 +14,7 @@
 using namespace vibrissa;
 
 namespace {
-template <class F>
-std::string invalid_message(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "<no std::invalid_argument>";
-}
+using vibrissa::test::invalid_message;
 }  // namespace
 
 TEST(Checks, FormatValueIsShortestRoundTrip) {

@@ -1,6 +1,8 @@
 #pragma once
 // Shared fixtures for the core and solve tests: whiskers with closed-form answers.
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <numbers>
 
 #include "vibrissa/core/whisker.hpp"
@@ -22,6 +24,17 @@ inline Whisker rat_whisker(int links = 100, const Pose& pose = {}) {
   WhiskerProperties p;
   p.links = links;
   return Whisker::from_parabola(0.040, 12.0, p, pose);
+}
+
+/// The message of the std::invalid_argument that `f()` throws (a marker string if it throws none).
+template <class F>
+inline std::string invalid_message(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "<no std::invalid_argument>";
 }
 
 inline double deg(double d) { return d * std::numbers::pi / 180.0; }

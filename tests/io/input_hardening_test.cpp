@@ -1,6 +1,8 @@
 // Hostile inputs at every reader (docs/formats.md, "Limits"): each class of defect once found by fuzzing.
 #include <gtest/gtest.h>
 
+#include "../core/test_helpers.hpp"
+
 #include <hdf5.h>
 
 #include <filesystem>
@@ -19,15 +21,7 @@ using vibrissa::io::parse_json_text;
 
 namespace {
 
-template <class F>
-std::string invalid_message(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "<no std::invalid_argument>";
-}
+using vibrissa::test::invalid_message;
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
