@@ -108,7 +108,8 @@ void bind_trial(py::module_& m) {
       .def(py::init([](const py::object& time, const py::object& base_W, const py::object& theta,
                        const py::object& phi, const py::object& contact, const py::object& rest_shape,
                        const py::object& edges, const py::object& zeta, const py::object& contact_W,
-                       const py::object& shape_W, double youngs_modulus_Pa, double poisson_ratio,
+                       const py::object& shape_W, const py::object& reconstructed,
+                       const py::object& reprojection_px, const py::object& likelihood, double youngs_modulus_Pa, double poisson_ratio,
                        double base_radius, double taper_ratio, int links, double frame_rate_Hz,
                        const std::string& source) {
              trial::Trial t;
@@ -136,6 +137,15 @@ void bind_trial(py::module_& m) {
                  t.shape_W.push_back(std::move(frame));
                }
              }
+             if (!reconstructed.is_none())
+               for (double r : vector1(reconstructed, "reconstructed")) {
+                 if (r != 0.0 && r != 1.0)
+                   throw py::value_error("reconstructed must hold only 0 and 1, got " +
+                                         py::repr(py::float_(r)).cast<std::string>());
+                 t.reconstructed.push_back(static_cast<std::uint8_t>(r));
+               }
+             if (!reprojection_px.is_none()) t.reprojection_px = vector1(reprojection_px, "reprojection_px");
+             if (!likelihood.is_none()) t.likelihood = vector1(likelihood, "likelihood");
              t.meta.rest_shape = points3(rest_shape, "rest_shape");
              const DoubleArray e = as_double_array(edges, "edges");
              if (!((e.ndim() == 2 && e.shape(1) == 6) || (e.ndim() == 1 && e.shape(0) == 6)))
@@ -152,12 +162,15 @@ void bind_trial(py::module_& m) {
            }),
            py::kw_only(), py::arg("time"), py::arg("base_W"), py::arg("theta"), py::arg("phi"), py::arg("contact"),
            py::arg("rest_shape"), py::arg("edges"), py::arg("zeta") = py::none(), py::arg("contact_W") = py::none(),
-           py::arg("shape_W") = py::none(), py::arg("youngs_modulus_Pa") = 3.3e9, py::arg("poisson_ratio") = 0.38,
+           py::arg("shape_W") = py::none(), py::arg("reconstructed") = py::none(),
+           py::arg("reprojection_px") = py::none(), py::arg("likelihood") = py::none(),
+           py::arg("youngs_modulus_Pa") = 3.3e9, py::arg("poisson_ratio") = 0.38,
            py::arg("base_radius") = 100e-6, py::arg("taper_ratio") = 15.0, py::arg("links") = 100,
            py::arg("frame_rate_Hz") = 1000.0, py::arg("source") = "python",
            "A trial from arrays in SI units (docs/trials.md): time (n,) [s], base_W (n, 3) [m], theta, phi and "
            "optional zeta (n,) [rad], contact (n,) 0/1, rest_shape (K, 3) [m], edges (m, 6); optional contact_W "
-           "(n, 3) [m] (NaN outside contact) and shape_W (n, K, 3) [m] (NaN-padded). Validated like a file: "
+           "(n, 3) [m] (NaN outside contact) and shape_W (n, K, 3) [m] (NaN-padded); optional reconstruction "
+           "columns reconstructed (n,) 0/1, reprojection_px and likelihood (n,). Validated like a file: "
            "ValueError naming the row and column.")
       .def_property_readonly("time", [](const trial::Trial& t) { return to_array(t.time); }, "(n,) time stamps [s]")
       .def_property_readonly("base_W", [](const trial::Trial& t) { return to_array(t.base_W); },
@@ -182,6 +195,23 @@ void bind_trial(py::module_& m) {
       .def_property_readonly(
           "shape_W", [](const trial::Trial& t) { return optional_array(t.has_shapes(), shapes_array(t)); },
           "(n, K, 3) tracked whisker shapes, world [m], base first, NaN-padded; None if not tracked")
+      .def_property_readonly(
+          "reconstructed",
+          [](const trial::Trial& t) -> py::object {
+            if (t.reconstructed.empty()) return py::none();
+            py::array_t<std::uint8_t> a(static_cast<py::ssize_t>(t.reconstructed.size()));
+            std::memcpy(a.mutable_data(), t.reconstructed.data(), t.reconstructed.size());
+            return py::object(std::move(a));
+          },
+          "(n,) uint8, 0 where `vibrissa reconstruct` could not reconstruct the frame (its pose is NaN and the "
+          "analysis skips it); None if the trial was not reconstructed")
+      .def_property_readonly(
+          "reprojection_px",
+          [](const trial::Trial& t) { return optional_array(!t.reprojection_px.empty(), to_array(t.reprojection_px)); },
+          "(n,) RMS reprojection error of the tracked points used [px], or None")
+      .def_property_readonly(
+          "likelihood", [](const trial::Trial& t) { return optional_array(!t.likelihood.empty(), to_array(t.likelihood)); },
+          "(n,) mean tracker likelihood of the points used, in [0, 1], or None")
       .def_property_readonly("rest_shape", [](const trial::Trial& t) { return to_array(t.meta.rest_shape); },
                              "(K, 3) undeflected shape, base first [m] (the pose places it)")
       .def_property_readonly("edges", [](const trial::Trial& t) { return edges_array(t.meta.edges); },

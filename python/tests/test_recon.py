@@ -56,3 +56,39 @@ def test_python_and_cli_give_the_same_trial(cli, tmp_path):
     ok = np.array([f["status"] == "ok" for f in report["frames"]])
     assert ok.sum() == 11
     np.testing.assert_allclose(trial.theta[ok], np.radians(5.0 + 2.0 * np.arange(12))[ok], atol=1e-4)
+
+
+def test_reconstruction_columns_round_trip(tmp_path):
+    """reconstructed, reprojection_px and likelihood: from the reconstruction, through every trial format, and
+    from Python arrays; None on a trial without them."""
+    write_views(tmp_path)
+    th = np.radians(5.0 + 2.0 * 8)  # a peg through the whisker in frame 8: a trial file needs a contact period
+    peg = [0.02 * np.cos(th) - 8 * 0.02**2 * np.sin(th), 0.02 * np.sin(th) + 8 * 0.02**2 * np.cos(th), 0.0]
+    trial, _ = vibrissa.reconstruct(tmp_path / "top.csv", tmp_path / "front.csv", tmp_path / "cams.json", peg=peg)
+    assert trial.reconstructed.dtype == np.uint8
+    np.testing.assert_array_equal(trial.reconstructed, [1] * 5 + [0] + [1] * 6)  # frame 5 lacks the front view
+    assert np.isnan(trial.reprojection_px[5]) and np.all(trial.reprojection_px[trial.reconstructed == 1] < 1e-3)
+    np.testing.assert_array_equal(trial.likelihood[trial.reconstructed == 1], 1.0)  # plain CSV: likelihood 1
+    for ext in ("csv", "h5", "mat"):
+        trial.write(str(tmp_path / f"t.{ext}"))
+        again = vibrissa.read_trial(str(tmp_path / f"t.{ext}"))
+        for name in ("reconstructed", "reprojection_px", "likelihood"):
+            np.testing.assert_array_equal(getattr(again, name), getattr(trial, name), err_msg=f"{name} .{ext}")
+    mine = vibrissa.Trial(time=trial.time, base_W=trial.base_W, theta=trial.theta, phi=trial.phi,
+                          contact=trial.contact, rest_shape=trial.rest_shape, edges=[0, 0, 0, 0, 0, 1],
+                          reconstructed=trial.reconstructed, reprojection_px=trial.reprojection_px,
+                          likelihood=np.full(12, 0.5))
+    np.testing.assert_array_equal(mine.reconstructed, trial.reconstructed)
+    np.testing.assert_array_equal(mine.likelihood, 0.5)
+    plain = vibrissa.synthesize_trial(duration=0.05)
+    assert plain.reconstructed is None and plain.reprojection_px is None and plain.likelihood is None
+    bad = dict(time=trial.time, base_W=trial.base_W, theta=trial.theta, phi=trial.phi, contact=trial.contact,
+               rest_shape=trial.rest_shape, edges=[0, 0, 0, 0, 0, 1])
+    for kw, message in ((dict(reconstructed=np.full(12, 2)), "reconstructed must hold only 0 and 1, got 2.0"),
+                        (dict(likelihood=np.ones(3)), "likelihood")):
+        try:
+            vibrissa.Trial(**bad, **kw)
+        except ValueError as e:
+            assert message in str(e), str(e)
+        else:
+            raise AssertionError(f"{kw} accepted")

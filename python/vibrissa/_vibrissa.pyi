@@ -322,7 +322,8 @@ class Trial:
     def __init__(self, *, time: ArrayLike, base_W: ArrayLike, theta: ArrayLike, phi: ArrayLike,
                  contact: ArrayLike, rest_shape: ArrayLike, edges: ArrayLike, zeta: Optional[ArrayLike] = None,
                  contact_W: Optional[ArrayLike] = None, shape_W: Optional[ArrayLike] = None,
-                 youngs_modulus_Pa: float = 3.3e9, poisson_ratio: float = 0.38, base_radius: float = 100e-6,
+                 reconstructed: Optional[ArrayLike] = None, reprojection_px: Optional[ArrayLike] = None,
+                 likelihood: Optional[ArrayLike] = None, youngs_modulus_Pa: float = 3.3e9, poisson_ratio: float = 0.38, base_radius: float = 100e-6,
                  taper_ratio: float = 15.0, links: int = 100, frame_rate_Hz: float = 1000.0,
                  source: str = "python") -> None: ...
     @property
@@ -341,6 +342,12 @@ class Trial:
     def contact_W(self) -> Optional[Rows3]: ...  # (n, 3) world [m] or None
     @property
     def shape_W(self) -> Optional[npt.NDArray[np.float64]]: ...  # (n, K, 3) world [m], NaN-padded, or None
+    @property
+    def reconstructed(self) -> Optional[npt.NDArray[np.uint8]]: ...  # (n,) 0/1, or None
+    @property
+    def reprojection_px(self) -> Optional[Float1]: ...  # (n,) [px], or None
+    @property
+    def likelihood(self) -> Optional[Float1]: ...  # (n,) in [0, 1], or None
     @property
     def rest_shape(self) -> Rows3: ...  # (K, 3) [m]
     @property

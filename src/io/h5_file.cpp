@@ -203,6 +203,7 @@ std::optional<std::string> read_string_attribute(hid_t loc, const std::string& n
     throw std::invalid_argument(source + ": attribute '" + name + "': expected a string");
   require_single_value(a.get(), name, source);
   Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_cset(mem.get(), H5Tget_cset(type.get()));  // HDF5 converts no UTF-8 string to ASCII (PyTables writes UTF-8)
   if (H5Tis_variable_str(type.get()) > 0) {
     H5Tset_size(mem.get(), H5T_VARIABLE);
     char* s = nullptr;
@@ -218,6 +219,68 @@ std::optional<std::string> read_string_attribute(hid_t loc, const std::string& n
   if (H5Aread(a.get(), mem.get(), buf.data()) < 0)
     throw std::invalid_argument(source + ": attribute '" + name + "': unreadable");
   return std::string(buf.c_str());
+}
+
+std::optional<std::string> read_string_attribute_bytes(hid_t loc, const std::string& name,
+                                                      const std::string& source) {
+  if (H5Aexists(loc, name.c_str()) <= 0) return std::nullopt;
+  Handle a(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose);
+  Handle type(H5Aget_type(a.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0)
+    return read_string_attribute(loc, name, source);
+  require_single_value(a.get(), name, source);
+  const std::size_t size = H5Tget_size(type.get());
+  if (size > limits::max_array_elements)
+    throw std::invalid_argument(source + ": attribute '" + name + "': more than " +
+                                std::to_string(limits::max_array_elements) + " bytes (docs/formats.md, \"Limits\")");
+  std::string buf(size, '\0');
+  if (size > 0 && H5Aread(a.get(), type.get(), buf.data()) < 0)  // the file type itself: no conversion, every byte
+    throw std::invalid_argument(source + ": attribute '" + name + "': unreadable");
+  return buf;
+}
+
+std::vector<double> read_table_member(hid_t loc, const std::string& dataset, const std::string& member,
+                                      std::size_t& width, const std::string& source) {
+  const std::string what = source + ": table '" + dataset + "', member '" + member + "'";
+  Handle d(H5Dopen2(loc, dataset.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid()) throw std::invalid_argument(source + ": table '" + dataset + "' is missing");
+  Handle space(H5Dget_space(d.get()), H5Sclose);
+  if (H5Sget_simple_extent_ndims(space.get()) != 1)
+    throw std::invalid_argument(source + ": table '" + dataset + "': expected one dimension of rows");
+  hsize_t rows = 0;
+  H5Sget_simple_extent_dims(space.get(), &rows, nullptr);
+  Handle type(H5Dget_type(d.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_COMPOUND)
+    throw std::invalid_argument(source + ": table '" + dataset + "': expected a compound (table) type");
+  const int index = H5Tget_member_index(type.get(), member.c_str());
+  if (index < 0) throw std::invalid_argument(what + ": missing");
+  Handle member_type(H5Tget_member_type(type.get(), unsigned(index)), H5Tclose);
+  hsize_t columns = 1;
+  H5T_class_t cls = H5Tget_class(member_type.get());
+  if (cls == H5T_ARRAY) {
+    if (H5Tget_array_ndims(member_type.get()) != 1)
+      throw std::invalid_argument(what + ": expected a one-dimensional array per row");
+    H5Tget_array_dims2(member_type.get(), &columns);
+    Handle base(H5Tget_super(member_type.get()), H5Tclose);
+    cls = H5Tget_class(base.get());
+  }
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER) throw std::invalid_argument(what + ": not numeric");
+  if (columns == 0 || rows > limits::max_array_elements || columns > limits::max_array_elements / std::max<hsize_t>(rows, 1))
+    throw std::invalid_argument(what + ": " + std::to_string(rows) + " x " + std::to_string(columns) +
+                                " values (at most " + std::to_string(limits::max_array_elements) +
+                                ", docs/formats.md, \"Limits\")");
+  width = static_cast<std::size_t>(columns);
+  // A memory compound of just this member, as doubles: HDF5 converts it by name from every row.
+  Handle value_type(columns == 1 ? H5Tcopy(H5T_NATIVE_DOUBLE) : H5Tarray_create2(H5T_NATIVE_DOUBLE, 1, &columns),
+                    H5Tclose);
+  const std::size_t row_bytes = sizeof(double) * width;
+  Handle memory(H5Tcreate(H5T_COMPOUND, row_bytes), H5Tclose);
+  if (!value_type.valid() || !memory.valid() || H5Tinsert(memory.get(), member.c_str(), 0, value_type.get()) < 0)
+    throw std::invalid_argument(what + ": unreadable type");
+  std::vector<double> data(static_cast<std::size_t>(rows) * width);
+  if (!data.empty() && H5Dread(d.get(), memory.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
+    throw std::invalid_argument(what + ": cannot read the table");
+  return data;
 }
 
 std::optional<double> read_double_attribute(hid_t loc, const std::string& name, const std::string& source) {

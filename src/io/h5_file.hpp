@@ -1,7 +1,8 @@
 #pragma once
-// The one RAII wrapper of the HDF5 C API (private to the io layer), used by trial files, trial results and
-// array outputs. Numeric data are read as native double (HDF5 converts integer datasets on read) and written
-// little-endian in the type of the vector; strings as variable- or fixed-length datasets and attributes.
+// The one RAII wrapper of the HDF5 C API (private to the library), used by trial files, trial results, array
+// outputs and the DeepLabCut HDF5 reader (src/recon/dlc_h5.cpp). Numeric data are read as native double (HDF5
+// converts integer datasets on read) and written little-endian in the type of the vector; strings as
+// variable- or fixed-length datasets and attributes.
 #include <hdf5.h>
 
 #include <cstdint>
@@ -82,6 +83,15 @@ void write_strings(hid_t loc, const std::string& name, const std::vector<std::st
 void write_fixed_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data);
 
 std::optional<std::string> read_string_attribute(hid_t loc, const std::string& name, const std::string& source);
+/// A fixed-length string attribute with every byte (embedded NULs and padding kept; a binary pickle);
+/// variable-length strings as read_string_attribute.
+std::optional<std::string> read_string_attribute_bytes(hid_t loc, const std::string& name,
+                                                      const std::string& source);
+/// One member of a one-dimensional compound dataset (a PyTables table), scalar or a one-dimensional array
+/// per row, as doubles (rows x width, row-major); `width` is set to the array length (1 for a scalar).
+/// Throws naming `source`, the dataset and the member, also for more than limits::max_array_elements values.
+std::vector<double> read_table_member(hid_t loc, const std::string& dataset, const std::string& member,
+                                      std::size_t& width, const std::string& source);
 std::optional<double> read_double_attribute(hid_t loc, const std::string& name, const std::string& source);
 void write_string_attribute(hid_t loc, const std::string& name, const std::string& value);
 void write_double_attribute(hid_t loc, const std::string& name, double value);

@@ -7,6 +7,7 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/dlc_files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/dlc_h5.cpp
   ${CMAKE_CURRENT_LIST_DIR}/geometry.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/pickled_value.cpp
   ${CMAKE_CURRENT_LIST_DIR}/reconstruct.cpp
   ${CMAKE_CURRENT_LIST_DIR}/reconstruct_files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/text_cells.cpp

@@ -138,7 +138,51 @@ TEST(Janelia, ReadsBinaryAndTextWhiskersWithMeasurementIdentities) {
   EXPECT_NE(error_of([&] { read_measurements(whiskers); }).find(whiskers + ": header"), std::string::npos);
 }
 
-TEST(DeepLabCutH5, ReportsTheLimitationNamingTheFile) {
-  const auto path = temp_file("x.h5", "");
-  EXPECT_NE(error_of([&] { read_tracks(path); }).find(path + ": DeepLabCut HDF5"), std::string::npos);
+namespace {
+const std::string dlc_data = std::string(VIBRISSA_SOURCE_DIR) + "/tests/data/deeplabcut/";
+void expect_same_tracks(const Tracks2D& a, const Tracks2D& b) {
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  for (std::size_t i = 0; i < a.frames.size(); ++i) {
+    EXPECT_EQ(a.frames[i].frame, b.frames[i].frame);
+    EXPECT_EQ(a.frames[i].points_px, b.frames[i].points_px);
+    EXPECT_EQ(a.frames[i].likelihood, b.frames[i].likelihood);
+  }
 }
+}  // namespace
+
+// Fixtures written by pandas + PyTables (tests/data/deeplabcut/README.md): each .h5 and its .csv hold the
+// same DataFrame.
+TEST(DeepLabCutH5, SingleAnimalTableReadsLikeItsCsv) {
+  const Tracks2D h5 = read_tracks(dlc_data + "single_animal.h5");
+  expect_same_tracks(h5, read_dlc_csv(dlc_data + "single_animal.csv"));
+  ASSERT_EQ(h5.frames.size(), 5u);
+  EXPECT_EQ(h5.frames[3].frame, 4);  // frame 3 was not analysed
+  ASSERT_EQ(h5.frames[1].points_px.size(), 2u);  // NaN tip in frame 1
+  EXPECT_EQ(h5.frames[2].points_px[1], Eigen::Vector2d(141.0, 198.25));
+  EXPECT_EQ(h5.frames[2].likelihood[1], 0.03125);
+  EXPECT_EQ(h5.frames[0].points_px[2], Eigen::Vector2d(180.0, 192.0));
+  expect_same_tracks(read_dlc_h5(dlc_data + "single_animal.h5", {"tip", "base"}),
+                     read_dlc_csv(dlc_data + "single_animal.csv", {"tip", "base"}));
+  // The deflated fuzz seed of the same table.
+  expect_same_tracks(read_dlc_h5(std::string(VIBRISSA_SOURCE_DIR) + "/fuzz/corpus/dlc_h5/single_animal_zlib.h5"), h5);
+}
+
+TEST(DeepLabCutH5, MultiAnimalTableReadsLikeItsCsv) {
+  const std::string h5 = dlc_data + "multi_animal.h5", csv = dlc_data + "multi_animal.csv";
+  EXPECT_EQ(error_of([&] { read_dlc_h5(h5); }), h5 + ": field 'individuals': the file has 2 individuals: choose one");
+  for (const char* who : {"mouse1", "mouse2"}) expect_same_tracks(read_dlc_h5(h5, {}, who), read_dlc_csv(csv, {}, who));
+  const Tracks2D m2 = read_dlc_h5(h5, {}, "mouse2");
+  EXPECT_EQ(m2.frames[0].points_px.size(), 2u);  // base untracked in frame 0
+  EXPECT_EQ(m2.frames[1].points_px[0], Eigen::Vector2d(400.5, 200.125));
+  EXPECT_EQ(error_of([&] { read_dlc_h5(h5, {}, "mouse3"); }), h5 + ": field 'individuals': no individual 'mouse3' in the file");
+}
+
+TEST(DeepLabCutH5, RejectsFilesThatAreNotPandasTables) {
+  const auto empty = temp_file("x.h5", "");
+  EXPECT_EQ(error_of([&] { read_tracks(empty); }), empty + ": cannot open as an HDF5 file");
+  const std::string fixed = dlc_data + "fixed_format.h5";  // pandas' default to_hdf format
+  EXPECT_EQ(error_of([&] { read_dlc_h5(fixed); }),
+            fixed + ": group 'df_with_missing' attribute 'pandas_type': 'frame', expected 'frame_table' (write "
+                    "with to_hdf(..., format=\"table\"))");
+}
+
