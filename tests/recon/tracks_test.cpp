@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -186,3 +188,61 @@ TEST(DeepLabCutH5, RejectsFilesThatAreNotPandasTables) {
                     "with to_hdf(..., format=\"table\"))");
 }
 
+
+// Files written by the Janelia Whisker Tracker itself (tests/data/janelia/README.md): `trace` of a synthetic
+// video of one dark quadratic whisker, x = 40 + s, y = 100 + 3 f + (-0.2 + 0.04 f) s + 0.0012 s^2 px (frame f,
+// 0 <= s <= 220), `measure` + `classify` (identity 0 for the whisker, -1 for the stray segments), and
+// `whisker_convert` to the text format.
+TEST(Janelia, ReadsWhatTheTrackerWroteForASyntheticVideo) {
+  const std::string dir = std::string(VIBRISSA_SOURCE_DIR) + "/tests/data/janelia/";
+  const auto binary = read_whiskers(dir + "synth.whiskers");
+  const auto text = read_whiskers(dir + "synth_text.whiskers");
+  ASSERT_EQ(binary.size(), 14u);
+  ASSERT_EQ(text.size(), binary.size());
+  std::vector<int> per_frame(6, 0);
+  for (std::size_t i = 0; i < binary.size(); ++i) {
+    ASSERT_LT(binary[i].frame, 6);
+    ++per_frame[std::size_t(binary[i].frame)];
+    EXPECT_EQ(text[i].frame, binary[i].frame);
+    EXPECT_EQ(text[i].id, binary[i].id);
+    ASSERT_EQ(text[i].x.size(), binary[i].x.size());
+    for (std::size_t k = 0; k < binary[i].x.size(); ++k) {  // the text file has 6 significant digits
+      EXPECT_NEAR(text[i].x[k], binary[i].x[k], 1e-3f);
+      EXPECT_NEAR(text[i].y[k], binary[i].y[k], 1e-3f);
+    }
+  }
+  EXPECT_EQ(per_frame, (std::vector<int>{3, 3, 2, 3, 2, 1}));
+  const auto rows = read_measurements(dir + "synth.measurements");
+  ASSERT_EQ(rows.size(), binary.size());
+  int whiskers = 0;
+  for (const auto& r : rows) {
+    EXPECT_TRUE(r.identity == 0 || r.identity == -1);
+    if (r.identity == 0) {
+      ++whiskers;
+      EXPECT_EQ(r.segment, 0);  // the long trace of each frame
+    }
+  }
+  EXPECT_EQ(whiskers, 6);
+  for (const std::string file : {"synth.whiskers", "synth_text.whiskers"}) {
+    SCOPED_TRACE(file);
+    const Tracks2D t = janelia_tracks(dir + file, dir + "synth.measurements", 0);
+    ASSERT_EQ(t.frames.size(), 6u);
+    for (const auto& f : t.frames) {
+      const double y0 = 100.0 + 3.0 * double(f.frame), slope = -0.2 + 0.04 * double(f.frame);
+      // Oriented from the follicle: the tracer starts at the face edge (x ~ 30) and runs to the tip.
+      EXPECT_NEAR(f.points_px.front().x(), 30.0, 0.1);
+      EXPECT_GT(f.points_px.back().x(), 260.0);
+      EXPECT_EQ(f.likelihood, std::vector<double>(f.points_px.size(), 1.0));
+      std::size_t inside = 0;
+      for (const auto& p : f.points_px) {
+        if (p.x() < 45.0 || p.x() > 255.0) continue;  // away from the face edge and the tapered tip
+        ++inside;
+        double d = 1e9;  // distance to the drawn centre line
+        for (double s = 0.0; s <= 220.0; s += 0.01)
+          d = std::min(d, std::hypot(p.x() - 40.0 - s, p.y() - y0 - slope * s - 0.0012 * s * s));
+        EXPECT_LT(d, 1.0) << "frame " << f.frame << " point (" << p.x() << ", " << p.y() << ")";
+      }
+      EXPECT_GT(inside, 180u);
+    }
+  }
+}
