@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "csv_cells.hpp"
 #include "vibrissa/core/checks.hpp"
 #include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
@@ -22,25 +23,10 @@ namespace {
 
 constexpr double nan_v = std::numeric_limits<double>::quiet_NaN();
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
-}
-
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream is(line);
-  while (std::getline(is, cell, sep)) out.push_back(trim(cell));
-  if (!line.empty() && line.back() == sep) out.emplace_back();
-  return out;
-}
+using csv::trim;
 
 double parse_number(const std::string& cell, const std::string& src, std::size_t row, const std::string& col) {
-  if (cell.empty() || cell == "nan" || cell == "NaN" || cell == "NAN") return nan_v;
-  const std::optional<double> v = parse_decimal(cell);  // decimal only: "0x10" and trailing text are errors
+  const std::optional<double> v = csv::number(cell);  // decimal only: "0x10" and trailing text are errors
   if (!v) throw std::invalid_argument(located_message(src, row, col, "cannot parse '" + quote_text(cell) + "' as a number"));
   return *v;
 }
@@ -107,7 +93,7 @@ trial::Trial read_trial_csv(const std::string& path) {
                                                                         std::to_string(meta[key].second) + ")"));
       continue;
     }
-    header = split(s, ',');
+    header = csv::split(s);
     header_line = line_no;
     break;
   }
@@ -227,7 +213,7 @@ trial::Trial read_trial_csv(const std::string& path) {
     if (s.empty() || s[0] == '#') continue;
     if (rows.size() == limits::max_trial_frames)
       require_at_most(rows.size() + 1, limits::max_trial_frames, path + ": number of frames");
-    const auto cells = split(s, ',');
+    const auto cells = csv::split(s);
     if (cells.size() != header.size())
       throw std::invalid_argument(located_message(path, line_no, "",
                                                   "has " + std::to_string(cells.size()) + " cells, the header has " +

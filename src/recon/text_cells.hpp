@@ -1,14 +1,17 @@
 #pragma once
-// Cells of the text track files (private to src/recon): splitting, trimming, numbers with located errors.
+// Cells of the text track files (private to src/recon): numbers and indices with errors naming file, line
+// and field. Splitting and trimming are the library's CSV cells (src/io/csv_cells.hpp).
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "../io/csv_cells.hpp"
+
 namespace vibrissa::recon {
 
-std::string trim(const std::string& s);
+using io::csv::trim;
 /// Comma-separated cells, each trimmed.
-std::vector<std::string> split_cells(const std::string& line);
+inline std::vector<std::string> split_cells(const std::string& line) { return io::csv::split(line); }
 /// "file: line L, field 'F': message" (L = 0 omits the line).
 std::string cell_message(const std::string& path, std::size_t line, const std::string& field,
                          const std::string& message);
