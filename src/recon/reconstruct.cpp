@@ -197,13 +197,18 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const TrackFrame* top, 
   };
   std::vector<Point3> found;
   double first_arc = std::numeric_limits<double>::infinity(), last_arc = -first_arc;  // of the top matches
+  // A front point counts as beyond an end of the top matches only by more than half a front-view spacing
+  // (relative arc length): a point the top view lost is a whole spacing out, while the views' own end points
+  // differ by pixel noise only, and keeping those of them that happen to fall outside lengthened the curve at
+  // both ends (a base ~0.6 px behind the follicle at 0.5 px noise, and a systematic angle bias).
+  const double beyond_margin = 0.5 / double(b.px.size() - 1);
   for (const bool from_top : {true, false}) {
     const ViewPoints& own = from_top ? a : b;
     for (const Match& m : match_views(own, from_top ? b : a, from_top ? F : Eigen::Matrix3d(F.transpose()))) {
       const double arc = 0.5 * (m.own_arc + m.other_arc);
       // Front points only beyond the ends of the top matches: inside, they would repeat the same stretch with
       // pixel errors shared with the top matches (correlated residuals make the fit follow the noise).
-      if (!from_top && arc >= first_arc && arc <= last_arc) continue;
+      if (!from_top && arc >= first_arc - beyond_margin && arc <= last_arc + beyond_margin) continue;
       const Eigen::Vector2d top_px = from_top ? own.px[m.own] : m.other_px;
       const Eigen::Vector2d front_px = from_top ? m.other_px : own.px[m.own];
       const Triangulated t = triangulate({&top_cam, &front_cam}, {top_px, front_px});
