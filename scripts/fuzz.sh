@@ -8,7 +8,8 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -eq 0 ] && harnesses=(case_json trial_csv array_config dlc_h5 pickled_value)
+# dlc_h5 is run on request only: mutated HDF5 bytes crash libhdf5 1.10 itself (docs/formats.md, "Fuzzing").
+[ ${#harnesses[@]} -eq 0 ] && harnesses=(case_json trial_csv array_config pickled_value janelia)
 
 CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVIBRISSA_WERROR=ON \
   -DVIBRISSA_FUZZ=ON -DVIBRISSA_BUILD_TESTS=OFF -DVIBRISSA_BUILD_BENCHMARKS=OFF -DVIBRISSA_BUILD_PYTHON=OFF > /dev/null

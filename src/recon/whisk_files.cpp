@@ -134,6 +134,11 @@ std::vector<MeasurementRow> read_measurements(const std::string& path) {
   const std::int32_t rows = r.get<std::int32_t>("header", "n_rows");
   const std::int32_t cols = r.get<std::int32_t>("header", "n_measures");
   if (rows < 0 || cols < 0) throw std::invalid_argument(path + ": header, field 'n_rows': negative size");
+  // Checked before allocating: a row is ten int32, one char, then n_measures float64 values and velocities.
+  const std::size_t row_bytes = 10 * sizeof(std::int32_t) + 1 + 2 * sizeof(double) * std::size_t(cols);
+  if (std::size_t(rows) > (r.end - r.at) / row_bytes)
+    throw std::invalid_argument(path + ": header, field 'n_rows': " + std::to_string(rows) + " rows of " +
+                                std::to_string(cols) + " measures do not fit in the file (truncated?)");
   std::vector<MeasurementRow> out;
   out.resize(std::size_t(rows));
   for (std::int32_t i = rows - 1; i >= 0; --i) {  // written last row first

@@ -138,6 +138,13 @@ TEST(Janelia, ReadsBinaryAndTextWhiskersWithMeasurementIdentities) {
   const auto badtext = temp_file("bad.whiskers", "whisker1 x\n0,0,0,2,1,1,1,1\n");
   EXPECT_EQ(error_of([&] { read_whiskers(badtext); }), badtext + ": line 2, field 'n': frame 0: n = 2 needs 12 cells, got 8");
   EXPECT_NE(error_of([&] { read_measurements(whiskers); }).find(whiskers + ": header"), std::string::npos);
+  // A row count the file cannot hold is refused before anything is allocated (found by fuzz/janelia).
+  std::string huge("measv3\0\0", 8);
+  put<std::int32_t>(huge, 0x7fffffff);
+  put<std::int32_t>(huge, 2);
+  const auto huge_path = temp_file("huge.measurements", huge);
+  EXPECT_EQ(error_of([&] { read_measurements(huge_path); }),
+            huge_path + ": header, field 'n_rows': 2147483647 rows of 2 measures do not fit in the file (truncated?)");
 }
 
 namespace {
