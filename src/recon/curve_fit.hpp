@@ -1,7 +1,7 @@
 #pragma once
 // Smooth 3D curve through noisy points (private to src/recon): a clamped cubic B-spline with `segments` equal
 // knot intervals of a curve parameter (chord length, corrected to the foot points), fitted by penalised
-// weighted least squares (third differences of the coefficients, weight by generalised cross-validation with
+// weighted least squares (integrated squared third derivative, weight by generalised cross-validation with
 // the trace counted twice) with Tukey biweights (iteratively reweighted), then resampled at equal arc length
 // with core/rest_curve.hpp. Unlike one global polynomial, the spline is local: the jump in the curvature's
 // derivative at a contact point does not tilt the base tangent.
