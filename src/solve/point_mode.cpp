@@ -43,9 +43,11 @@ PointAttempt attempt_point(const Whisker& w, const detail::Scales& sc, const Eig
 }
 
 /// Damped Gauss-Newton on the two force components (scaled) with the arc length s (scaled) held fixed, from
-/// `f`, toward the contact point `goal_B`; returns the force and the remaining gap (scaled).
+/// `f`, toward the contact point `goal_B`, at most `iterations` steps; returns the force and the remaining gap
+/// (scaled).
 std::pair<Eigen::Vector2d, double> fixed_arc_length_force(const Whisker& w, const detail::Scales& sc,
-                                                          const Eigen::Vector3d& goal_B, double s, Eigen::Vector2d f) {
+                                                          const Eigen::Vector3d& goal_B, double s, Eigen::Vector2d f,
+                                                          int iterations = 30) {
   using D = Dual<3>;
   auto evaluate = [&](const Eigen::Vector2d& f_, Eigen::Matrix<double, 3, 2>& J, Eigen::Vector3d& gap) {
     const std::array<D, 3> u{D::variable(f_[0], 0), D::variable(f_[1], 1), D(s)};
@@ -60,7 +62,7 @@ std::pair<Eigen::Vector2d, double> fixed_arc_length_force(const Whisker& w, cons
   Eigen::Matrix<double, 3, 2> J;
   Eigen::Vector3d gap;
   evaluate(f, J, gap);
-  for (int it = 0; it < 30; ++it) {
+  for (int it = 0; it < iterations; ++it) {
     const Eigen::Vector2d step = J.colPivHouseholderQr().solve(gap);
     double t = 1.0;
     Eigen::Matrix<double, 3, 2> J_try;
@@ -81,30 +83,28 @@ std::pair<Eigen::Vector2d, double> fixed_arc_length_force(const Whisker& w, cons
 }
 
 /// Unknowns at arc length s (scaled) with the force that brings the contact at s closest to the target, from
-/// zero force. With `search`, if that leaves a gap, Gauss-Newton is also started from a grid of forces (12
-/// directions of (F_y, F_z) x magnitudes 1/2 to 16 in units of E I_0 / L^2, best initial gap first)
-/// until one reaches the target: a large load (2 mN at 21 mm on a 30 mm whisker is ~7 units) is out of reach
-/// of the start from zero, which stops in another minimum of the gap, and the scan would then return a
-/// neighbouring root instead of the load at the hint.
+/// zero force. With `search`, if that leaves a gap, Gauss-Newton also runs a few steps from each of a grid of
+/// forces (12 directions of (F_y, F_z) x magnitudes 1/2 to 16 in units of E I_0 / L^2) and then to the end
+/// from the best of them: a large load (2 mN at 21 mm on a 30 mm whisker is ~7 units) is out of reach of the
+/// start from zero, which stops in another minimum of the gap, and the scan would then return a neighbouring
+/// root instead of the load at the hint.
 Eigen::Vector3d fixed_arc_length_start(const Whisker& w, const detail::Scales& sc, const Eigen::Vector3d& target_B,
                                        double s, bool search, double tolerance) {
   auto [f, gap] = fixed_arc_length_force(w, sc, target_B, s, Eigen::Vector2d::Zero());
   if (search && gap > tolerance) {
-    std::vector<std::pair<double, Eigen::Vector2d>> grid;  // (initial gap, force)
-    for (int i = 0; i < 12; ++i) {
+    constexpr int screening_steps = 4;
+    Eigen::Vector2d best = f;
+    double best_gap = gap;
+    for (int i = 0; i < 12 && best_gap > tolerance; ++i) {
       const double angle = 2.0 * std::numbers::pi * i / 12.0;
-      for (double magnitude = 0.5; magnitude <= 16.0; magnitude *= 2.0) {
-        const std::array<double, 3> u{magnitude * std::cos(angle), magnitude * std::sin(angle), s};
-        const auto p = detail::contact_at<double>(w, sc, u).p_contact_B;
-        const double g = (Eigen::Vector3d(p.x, p.y, p.z) - target_B).norm() / sc.length;
-        if (std::isfinite(g)) grid.emplace_back(g, Eigen::Vector2d(u[0], u[1]));
+      for (double magnitude = 0.5; magnitude <= 16.0 && best_gap > tolerance; magnitude *= 2.0) {
+        const Eigen::Vector2d start(magnitude * std::cos(angle), magnitude * std::sin(angle));
+        const auto [g, gap_g] = fixed_arc_length_force(w, sc, target_B, s, start, screening_steps);
+        if (gap_g < best_gap) std::tie(best, best_gap) = std::pair(g, gap_g);
       }
     }
-    std::sort(grid.begin(), grid.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (std::size_t i = 0; i < grid.size() && gap > tolerance; ++i) {
-      const auto [g, gap_g] = fixed_arc_length_force(w, sc, target_B, s, grid[i].second);
-      if (gap_g < gap) std::tie(f, gap) = std::pair(g, gap_g);
-    }
+    const auto [g, gap_g] = fixed_arc_length_force(w, sc, target_B, s, best);
+    if (gap_g < gap) f = g;
   }
   return {f[0], f[1], s};
 }
