@@ -206,6 +206,7 @@ Eigen::Vector3d towal_base_point(int COL, int ROW) {
 Morphology towal2011(Sides sides, PhiMethod phi_method) {
   Morphology m;
   m.source = "towal2011";
+  m.phi_method = to_string(phi_method);
   // Per side: A0-A4, B0-B5, C0-C6, D0-D6, E1-E6 (data sheet §1); COL = column number + 1.
   const int first[5] = {0, 0, 0, 0, 1};
   const int last[5] = {4, 5, 6, 6, 6};
@@ -267,6 +268,7 @@ Morphology morphology_by_name(std::string_view name, Sides sides, PhiMethod phi_
 Morphology select_whiskers(const Morphology& m, const std::vector<std::string>& names, const char* field) {
   Morphology out;
   out.source = m.source;
+  out.phi_method = m.phi_method;
   for (const std::string& n : names) {
     bool found = false;
     for (const WhiskerSpec& s : m.whiskers) {

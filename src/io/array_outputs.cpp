@@ -149,6 +149,7 @@ std::vector<std::size_t> h5_dataset_shape(const std::filesystem::path& path, con
 nlohmann::json array_summary_json(const ArrayResult& r, const SimulationConfig& c) {
   nlohmann::json j;
   j["morphology"] = c.morphology.source;
+  if (!c.morphology.phi_method.empty()) j["phi_method"] = c.morphology.phi_method;
   j["whiskers"] = r.n_whiskers;
   j["frames"] = r.n_frames;
   j["pitches_deg"] = nlohmann::json::array();

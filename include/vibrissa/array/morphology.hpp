@@ -51,6 +51,7 @@ void validate(const WhiskerSpec& spec);
 
 struct Morphology {
   std::string source;  ///< "towal2011", "belli2018", or the file it was read from
+  std::string phi_method;  ///< towal2011: the φ method used (to_string(PhiMethod)); empty for other sources
   std::vector<WhiskerSpec> whiskers;
 };
 
