@@ -50,6 +50,12 @@ def test_python_and_cli_give_the_same_trial(cli, tmp_path):
         np.testing.assert_array_equal(getattr(trial, name), getattr(from_cli, name), err_msg=name)
     assert report == json.loads((tmp_path / "cli.json").read_text())
     assert report["frames"][5]["status"] == "missing_view"
+    # Every null of the report has its reason (docs/formats.md, "Nulls and their reasons").
+    nulls = {f"/frames/{i}/{k}" for i, f in enumerate(report["frames"]) for k, v in f.items() if v is None}
+    assert set(report["nan_reasons"]) == nulls
+    assert report["nan_reasons"]["/frames/5/reprojection_px"].startswith("frame flagged 'missing_view'")
+    free = next(i for i, f in enumerate(report["frames"]) if f["status"] == "ok" and f["contact_s_m"] is None)
+    assert report["nan_reasons"][f"/frames/{free}/contact_s_m"].startswith("not in contact")
     assert np.isnan(trial.theta[5]) and np.isnan(trial.base_W[5]).all()
     assert seen and seen[-1] == (12, 12)
     assert trial.contact[8] == 1 and len(report["contact_periods"]) == 1

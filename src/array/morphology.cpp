@@ -21,6 +21,8 @@ constexpr Linear kTowalThetaBp{15.2953, 0.0, -144.2220};
 constexpr Linear kTowalPhiBp{0.0, 18.2237, 34.7558};
 constexpr Linear kTowalS{-7.9312, 2.2224, 52.1110};
 constexpr Linear kTowalTheta{10.6475, 0.0, 37.3178};
+constexpr Linear kTowalPhiProjection{1.0988, -18.0334, 50.6005};
+constexpr Linear kTowalPsiProjection{18.5149, 49.3499, -50.5406};
 constexpr Linear kTowalZeta{18.7700, -11.3485, -4.9844};
 constexpr Linear kTowalPhiEuler{0.0, -15.8761, 47.3263};
 
@@ -88,6 +90,58 @@ Sides sides_from_string(std::string_view name, const char* field) {
   fail(std::string(field) + " must be 'right', 'left' or 'both', got '" + std::string(name) + "'");
 }
 
+std::string_view to_string(PhiMethod method) {
+  switch (method) {
+    case PhiMethod::projection: return "projection";
+    case PhiMethod::projection_phi_only: return "projection_phi_only";
+    case PhiMethod::euler: return "euler";
+  }
+  return "projection";
+}
+
+PhiMethod phi_method_from_string(std::string_view name, const char* field) {
+  for (const PhiMethod m : {PhiMethod::projection, PhiMethod::projection_phi_only, PhiMethod::euler})
+    if (name == to_string(m)) return m;
+  fail(std::string(field) + " must be 'projection', 'projection_phi_only' or 'euler', got '" +
+       quote_text(std::string(name)) + "'");
+}
+
+double towal_elevation(PhiMethod method, Side side, double thP, int COL, int ROW) {
+  // RatMap Toolbox v1.1, Get_RatMap.m (LOCAL_CalculateParameters): angles in degrees, the toolbox's branches and
+  // boundaries kept exactly; a case no branch covers leaves the toolbox's φ at 0, and so here.
+  if (method == PhiMethod::euler) return deg(kTowalPhiEuler(COL, ROW));
+  if (!(thP >= 0.0 && thP <= 180.0))
+    fail("towal2011: projection theta must be in [0, 180] deg (the RatMap domain), got " + fmt(thP));
+  // The toolbox's Euler θ (0..360) of this side.
+  double th = 0.0;
+  if (side == Side::right) th = thP >= 90.0 ? thP - 90.0 : thP + 270.0;
+  else th = thP >= 90.0 ? (180.0 - thP) + 90.0 : 270.0 - thP;
+  const double phP = kTowalPhiProjection(COL, ROW), psP = kTowalPsiProjection(COL, ROW);
+  const auto tan_d = [](double d) { return std::tan(deg(d)); };
+  const auto sin_d = [](double d) { return std::sin(deg(d)); };
+  const auto cos_d = [](double d) { return std::cos(deg(d)); };
+  double phi = 0.0;  // [rad]
+  if (method == PhiMethod::projection_phi_only) {
+    if (0.0 <= th && th < 90.0) phi = std::atan(tan_d(phP) * cos_d(th));
+    else if (90.0 < th && th < 270.0) phi = std::atan(tan_d(phP) * cos_d(std::abs(180.0 - th)));
+    else if (270.0 < th && th <= 360.0) phi = std::atan(tan_d(phP) * cos_d(360.0 - th));
+    return phi;
+  }
+  const bool psi_low = 0.0 <= psP && psP <= 90.0, psi_high = 270.0 <= psP;
+  if (0.0 <= th && th <= 45.0) phi = std::atan(tan_d(phP) * cos_d(th));
+  else if (45.0 < th && th <= 90.0) phi = std::atan(tan_d(180.0 - psP) * sin_d(th));
+  else if (90.0 < th && th <= 135.0) phi = std::atan(tan_d(180.0 - psP) * sin_d(180.0 - th));
+  else if (135.0 < th && th <= 225.0) phi = std::atan(tan_d(phP) * cos_d(180.0 - th));
+  else if (225.0 < th && th <= 270.0 && psi_low) phi = std::atan(tan_d(psP) * sin_d(std::abs(180.0 - th)));
+  else if (225.0 < th && th <= 270.0 && psi_high) phi = std::atan(tan_d(psP - 360.0) * sin_d(std::abs(180.0 - th)));
+  else if (270.0 < th && th <= 315.0 && psi_low) phi = std::atan(tan_d(psP) * sin_d(360.0 - th));
+  else if (270.0 < th && th <= 315.0 && psi_high) phi = std::atan(tan_d(psP - 360.0) * sin_d(360.0 - th));
+  else if (315.0 < th && th <= 360.0) phi = std::atan(tan_d(phP) * cos_d(360.0 - th));
+  // The toolbox then negates this ("for correct rotation direction") and rotates by Ry(C_phi); vibrissa rotates by
+  // Ry(-φ), so φ is the value before that negation.
+  return phi;
+}
+
 std::string WhiskerSpec::label() const { return name + (side == Side::right ? "R" : "L"); }
 
 void parse_whisker_name(const std::string& name, int& row, int& column, const std::string& field) {
@@ -149,9 +203,10 @@ Eigen::Vector3d towal_base_point(int COL, int ROW) {
   return (R * (t * u) + centre) * mm;
 }
 
-Morphology towal2011(Sides sides) {
+Morphology towal2011(Sides sides, PhiMethod phi_method) {
   Morphology m;
   m.source = "towal2011";
+  m.phi_method = to_string(phi_method);
   // Per side: A0-A4, B0-B5, C0-C6, D0-D6, E1-E6 (data sheet §1); COL = column number + 1.
   const int first[5] = {0, 0, 0, 0, 1};
   const int last[5] = {4, 5, 6, 6, 6};
@@ -168,7 +223,7 @@ Morphology towal2011(Sides sides) {
         s.curvature = std::exp(1.0 / (-0.02052 * COL - 0.2045)) / mm;  // Towal curvature, y = a x^2 [1/mm]
         s.p_H_base = towal_base_point(COL, ROW);
         s.theta_rest = deg(kTowalTheta(COL, ROW));
-        s.phi_rest = deg(kTowalPhiEuler(COL, ROW));
+        s.phi_rest = towal_elevation(phi_method, side, kTowalTheta(COL, ROW), COL, ROW);
         s.zeta_rest = deg(kTowalZeta(COL, ROW));
         // Belli's model numbers columns from 1 without the Greek column: column 0 -> col 0 (extrapolated).
         s.base_radius = 0.5 * belli_base_diameter_mm(s.arc_length / mm, ROW, column) * mm;
@@ -203,8 +258,8 @@ Morphology belli2018(Sides sides) {
   return m;
 }
 
-Morphology morphology_by_name(std::string_view name, Sides sides, const char* field) {
-  if (name == "towal2011" || name == "towal") return towal2011(sides);
+Morphology morphology_by_name(std::string_view name, Sides sides, PhiMethod phi_method, const char* field) {
+  if (name == "towal2011" || name == "towal") return towal2011(sides, phi_method);
   if (name == "belli2018" || name == "belli") return belli2018(sides);
   fail(std::string(field) + " must be 'towal2011', 'belli2018' or a .csv/.json table, got '" + std::string(name) +
        "'");
@@ -213,6 +268,7 @@ Morphology morphology_by_name(std::string_view name, Sides sides, const char* fi
 Morphology select_whiskers(const Morphology& m, const std::vector<std::string>& names, const char* field) {
   Morphology out;
   out.source = m.source;
+  out.phi_method = m.phi_method;
   for (const std::string& n : names) {
     bool found = false;
     for (const WhiskerSpec& s : m.whiskers) {

@@ -152,15 +152,19 @@ SimulationConfig array_config_from_json(const json& j, const std::filesystem::pa
 
   // --- morphology ---
   const json m = j.value("morphology", json::object());
-  only_keys(m, "morphology", {"source", "sides", "whiskers", "taper_ratio", "youngs_modulus_GPa", "base_radius_scale"});
+  only_keys(m, "morphology", {"source", "sides", "phi_method", "whiskers", "taper_ratio", "youngs_modulus_GPa",
+                                  "base_radius_scale"});
   const std::string source = text(m, "morphology", "source", "towal2011");
   const Sides sides = sides_from_string(text(m, "morphology", "sides", "right"));
+  const PhiMethod phi_method = phi_method_from_string(text(m, "morphology", "phi_method", "projection"));
+  if (m.contains("phi_method") && source != "towal2011" && source != "towal")
+    fail("morphology.phi_method applies only to source 'towal2011', got source '" + quote_text(source) + "'");
   if (source.size() > 4 && (source.ends_with(".csv") || source.ends_with(".json"))) {
     const std::filesystem::path p = std::filesystem::path(source).is_absolute() ? std::filesystem::path(source)
                                                                               : base_dir / source;
     c.morphology = read_morphology_table(p);
   } else {
-    c.morphology = morphology_by_name(source, sides);
+    c.morphology = morphology_by_name(source, sides, phi_method);
   }
   if (m.contains("whiskers")) {
     if (!m.at("whiskers").is_array()) fail("morphology.whiskers must be a list of names");

@@ -9,6 +9,7 @@
 #include "vibrissa/array/sweep.hpp"
 #include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/json_file.hpp"
+#include "vibrissa/io/nan_reasons.hpp"
 
 namespace vibrissa::io {
 
@@ -104,15 +105,21 @@ void create_array_csv(const ArrayResult& r, const std::string& path) {
   if (std::fclose(f) != 0 || failed) throw std::runtime_error("cannot write '" + path + "' (disk full?)");
 }
 
-// One row per pitch (the head-pitch sweep table).
+// Reasons for the nulls of the summaries (io/nan_reasons.hpp), shared by summary.json and pitch_summary.csv.
+constexpr const char* kNoOnsetAtPitch = "no whisker touches an object at this head pitch";
+constexpr const char* kPushedPastWithoutContact =
+    "the whisker was pushed past the object without a converged contact frame";
+
+// One row per pitch (the head-pitch sweep table); the last column gives the reason for each empty cell.
 void print_pitch_summary_csv(const ArrayResult& r, std::ostream& out) {
   out << "pitch_deg,whiskers_touching,whiskers_pushed_past,contact_frames,first_onset_ms,peak_MB_uNm,"
-         "peak_MB_whisker,mean_peak_MB_uNm,mean_peak_FT_mN,max_abs_z_error_mm\n";
+         "peak_MB_whisker,mean_peak_MB_uNm,mean_peak_FT_mN,max_abs_z_error_mm,nan_reasons\n";
   for (const PitchSummary& s : summarize_pitches(r)) {
     out << to_deg(s.pitch) << ',' << s.whiskers_touching << ',' << s.whiskers_pushed_past << ',' << s.contact_frames
         << ',' << (s.whiskers_touching ? fmt(s.first_onset_time * 1e3) : std::string()) << ',' << s.peak_MB * 1e6
         << ',' << s.peak_MB_whisker << ',' << s.mean_peak_MB * 1e6 << ',' << s.mean_peak_FT * 1e3 << ','
-        << s.max_abs_z_error * 1e3 << '\n';
+        << s.max_abs_z_error * 1e3 << ','
+        << (s.whiskers_touching ? std::string() : std::string("\"first_onset_ms: ") + kNoOnsetAtPitch + "\"") << '\n';
   }
 }
 
@@ -142,6 +149,7 @@ std::vector<std::size_t> h5_dataset_shape(const std::filesystem::path& path, con
 nlohmann::json array_summary_json(const ArrayResult& r, const SimulationConfig& c) {
   nlohmann::json j;
   j["morphology"] = c.morphology.source;
+  if (!c.morphology.phi_method.empty()) j["phi_method"] = c.morphology.phi_method;
   j["whiskers"] = r.n_whiskers;
   j["frames"] = r.n_frames;
   j["pitches_deg"] = nlohmann::json::array();
@@ -181,6 +189,14 @@ nlohmann::json array_summary_json(const ArrayResult& r, const SimulationConfig& 
     e["whiskers"] = per;
     j["per_pitch"].push_back(e);
   }
+  NanReasons why;
+  for (std::size_t p = 0; p < j["per_pitch"].size(); ++p) {
+    const std::string at = "/per_pitch/" + std::to_string(p);
+    why.explain(at + "/first_onset_ms", kNoOnsetAtPitch);
+    for (const auto& whisker : j["per_pitch"][p]["whiskers"].items())
+      why.explain(at + "/whiskers/" + whisker.key() + "/onset_ms", kPushedPastWithoutContact);
+  }
+  why.attach(j);
   return j;
 }
 

@@ -5,6 +5,7 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/json_file.cpp
   ${CMAKE_CURRENT_LIST_DIR}/json_input.cpp
   ${CMAKE_CURRENT_LIST_DIR}/csv_cells.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/nan_reasons.cpp
   ${CMAKE_CURRENT_LIST_DIR}/figure_files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/h5_file.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_arrays.cpp

@@ -12,6 +12,7 @@
 #include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/json_file.hpp"
+#include "vibrissa/io/nan_reasons.hpp"
 
 namespace vibrissa::io {
 
@@ -55,7 +56,7 @@ void add_mode(ResultTable& t, const PipelineResult& r, Mode mode, const std::str
   col("iterations", [](const ModeFrame& m) { return m.iterations; });
 }
 
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json num(double v) { return finite_or_null(v); }
 
 nlohmann::json fit_json(const std::optional<LineFit>& f) {
   if (!f) return nullptr;
@@ -86,6 +87,130 @@ nlohmann::json friction_json(const FrictionAnalysis& a) {
 nlohmann::json ranges_json(const DirectionRanges& d) {
   return {{"mean_FD_range_deg", num(d.mean_fd_range_deg)}, {"mean_MD_range_deg", num(d.mean_md_range_deg)},
           {"FD_range_per_whisk_deg", d.fd_range_deg}, {"MD_range_per_whisk_deg", d.md_range_deg}};
+}
+
+std::string count_text(std::size_t n, const char* what) {
+  return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const std::string& l : lines) out += (out.empty() ? "" : "; ") + l;
+  return out;
+}
+
+/// Why a mode's results are absent: it was not run (and why not), or it never converged.
+std::string mode_missing(const PipelineResult& r, Mode m) {
+  switch (m) {
+    case Mode::contact_point:
+      if (!r.has_contact_point_mode)
+        return r.pre.trial.has_contact_point() ? "contact-point mode was not run"
+                                               : "contact-point mode was not run: the trial has no tracked contact point";
+      break;
+    case Mode::edge:
+      if (!r.has_edge_mode) return "edge mode was not run";
+      break;
+    case Mode::frictional_edge:
+      if (!r.has_frictional_mode) return "frictional edge mode was not run (it needs a friction coefficient: --mu)";
+      break;
+  }
+  return "";
+}
+
+void explain_friction(const std::string& at, const FrictionAnalysis& f, NanReasons& why) {
+  // analyse_friction's own warnings say why the whole block is empty (e.g. no frame in reach of the object).
+  if (f.frames_used == 0) {
+    why.explain(at, joined(f.warnings));
+    return;
+  }
+  why.explain(at + "/median_slipping", "no used frame slips along the edge (|d height / dt| above the slip speed)");
+  why.explain(at + "/sd", "a standard deviation needs 2 or more used frames, got " + count_text(f.frames_used, "frame"));
+  for (std::size_t b = 0; b < f.fn_bin_count.size(); ++b) {
+    const std::string k = std::to_string(b);
+    const std::size_t c = f.fn_bin_count[b];
+    why.explain(at + "/mu_mean_per_bin/" + k, "no frame in this normal-force bin");
+    why.explain(at + "/mu_sd_per_bin/" + k, c == 0 ? "no frame in this normal-force bin"
+                                                  : "a standard deviation needs 2 or more frames in the bin, got 1");
+  }
+}
+
+void explain_nulls(const PipelineResult& r, const TrialAnalysis& a, NanReasons& why) {
+  if (a.friction) explain_friction("/friction", *a.friction, why);
+  if (a.friction_frictional) explain_friction("/friction_frictional_mode", *a.friction_frictional, why);
+
+  const std::pair<Mode, const char*> modes[] = {
+      {Mode::contact_point, "contact_point"}, {Mode::edge, "edge"}, {Mode::frictional_edge, "frictional_edge"}};
+  for (const auto& [m, name] : modes) {
+    const std::string missing = mode_missing(r, m);
+    why.explain(std::string("/force_directions/") + name,
+                !missing.empty() ? missing
+                                 : "no contact period has 2 or more converged frames of this mode away from its "
+                                   "first and last two frames");
+    why.explain(std::string("/shape_error_mean_m/") + name,
+                !missing.empty()                  ? missing
+                : !r.pre.trial.has_shapes()       ? "the trial has no tracked whisker shapes"
+                                                  : "no converged frame of this mode has a tracked shape");
+  }
+  const std::string cp = mode_missing(r, Mode::contact_point), ed = mode_missing(r, Mode::edge);
+  const std::string both = !cp.empty() ? cp : !ed.empty() ? ed
+                                           : "no frame away from the period edges in which both contact-point and "
+                                             "edge modes converged";
+  why.explain("/force_directions/mean_FD_offset_cp_minus_edge_deg", both);
+  why.explain("/force_directions/mean_MD_offset_cp_minus_edge_deg", both);
+
+  if (!r.pre.trial.has_contact_point()) {
+    why.explain("/kinematic_prediction/fit", "the trial has no tracked contact point to compare with");
+  } else {
+    std::size_t crossing = 0;
+    for (std::size_t i = 0; i < a.kinematic.predicted.size(); ++i)
+      crossing += std::isfinite(a.kinematic.predicted[i]) && std::isfinite(a.kinematic.measured[i]);
+    why.explain("/kinematic_prediction/fit",
+                crossing < 3 ? "a fit needs 3 or more contact frames in which the rest whisker crosses the edge "
+                               "in the view, got " + count_text(crossing, "frame")
+                             : "the measured heights do not vary, so no line can be fitted");
+  }
+
+  // r² of a fit whose predicted values do not vary is 0/0.
+  for (const char* fit : {"/roll_fit", "/kinematic_prediction/fit", "/z_error/eq6/all", "/z_error/eq6/without_iqr_outliers",
+                          "/z_error/eq7/all", "/z_error/eq7/without_iqr_outliers"}) {
+    why.explain(std::string(fit) + "/r2", "the fitted values do not vary, so r² is 0/0");
+    why.explain(std::string(fit) + "/r2_identity", "the fitted values do not vary, so r² is 0/0");
+  }
+  if (a.z_error) {
+    const ZErrorAnalysis& z = *a.z_error;
+    std::size_t pairs = 0, measured = 0;
+    for (std::size_t i = 0; i < z.used.size(); ++i) {
+      pairs += z.used[i];
+      measured += std::isfinite(z.measured[i]);
+    }
+    const std::string no_cone = "the whisker is not tapered (taper ratio 1): eq. (5) has no cone length, so eqs. "
+                                "(6) and (7) predict nothing";
+    const std::string none_measured = "no contact frame in which both contact-point and edge modes converged";
+    why.explain("/z_error/cone_length_m", no_cone);
+    for (const char* eq : {"/z_error/eq6", "/z_error/eq7"}) {
+      const std::string e = eq;
+      if (!std::isfinite(z.cone_length)) {
+        why.explain(e, no_cone);
+        continue;
+      }
+      why.explain(e + "/all", pairs < 3 ? "a fit needs 3 or more frames with measured and predicted z error away "
+                                          "from the period edges, got " + count_text(pairs, "frame")
+                                        : "the measured z errors do not vary, so no line can be fitted");
+      why.explain(e + "/without_iqr_outliers",
+                  pairs < 3 ? "a fit needs 3 or more frames with measured and predicted z error away from the "
+                              "period edges, got " + count_text(pairs, "frame")
+                            : "fewer than 3 frames are left after removing the IQR outliers, or they do not vary");
+    }
+    why.explain("/z_error/measured_range_m", measured == 0 ? none_measured
+                                                            : "no frame away from the period edges with a predicted "
+                                                              "z error");
+    why.explain("/z_error/eq7_range_m", !std::isfinite(z.cone_length) ? no_cone
+                                        : measured == 0              ? none_measured
+                                                                     : "no frame away from the period edges with a "
+                                                                       "predicted z error");
+    why.explain("/z_error/mean_abs_height_difference_m", none_measured);
+    why.explain("/z_error/max_abs_height_difference_m", none_measured);
+  }
 }
 
 }  // namespace
@@ -224,6 +349,9 @@ nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
   j["shape_error_mean_m"] = {{"contact_point", num(a.shape_error.contact_point_mean)},
                              {"edge", num(a.shape_error.edge_mean)},
                              {"frictional_edge", num(a.shape_error.frictional_mean)}};
+  NanReasons why;
+  explain_nulls(r, a, why);
+  why.attach(j);
   return j;
 }
 

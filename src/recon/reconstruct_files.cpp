@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "vibrissa/io/nan_reasons.hpp"
 #include "vibrissa/recon/camera.hpp"
 
 namespace vibrissa::recon {
@@ -17,7 +18,7 @@ Camera named_camera(const std::map<std::string, Camera>& cams, const std::string
   return it->second;
 }
 
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+using io::finite_or_null;
 
 }  // namespace
 
@@ -51,6 +52,20 @@ std::string report_json(const Reconstruction& rec, int indent) {
                        {"undeflected_from_frame", u.source_frame}, {"undeflected_frames_averaged", u.frames_averaged},
                        {"undeflected_shape_m", shape}});
   }
+  // Each null's reason (io/nan_reasons.hpp): a flagged frame has no numbers; an unflagged one lacks a contact
+  // arc length when it does not touch, and an approach when the trial has no object edge.
+  io::NanReasons why;
+  for (std::size_t i = 0; i < rec.frames.size(); ++i) {
+    const auto& f = rec.frames[i];
+    const std::string at = "/frames/" + std::to_string(i);
+    if (f.status != FrameStatus::ok) {
+      why.explain(at, std::string("frame flagged '") + frame_status_name(f.status) + "' (docs/reconstruction.md)");
+      continue;
+    }
+    why.explain(at + "/contact_s_m", "not in contact: the whisker stays farther than the contact threshold from every edge");
+    why.explain(at + "/approach_m", "the trial has no object edge to approach");
+  }
+  why.attach(j);
   return j.dump(indent);
 }
 

@@ -3,6 +3,9 @@
 // implicit: the tracked point fixes where the contact is.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <Eigen/QR>
@@ -39,26 +42,27 @@ PointAttempt attempt_point(const Whisker& w, const detail::Scales& sc, const Eig
   return a;
 }
 
-/// Unknowns at arc length s (scaled) with the force that brings the contact at s closest to the target:
-/// damped Gauss-Newton on the two force components with s held fixed.
-Eigen::Vector3d fixed_arc_length_start(const Whisker& w, const detail::Scales& sc, const Eigen::Vector3d& target_B,
-                                       double s) {
+/// Damped Gauss-Newton on the two force components (scaled) with the arc length s (scaled) held fixed, from
+/// `f`, toward the contact point `goal_B`, at most `iterations` steps; returns the force and the remaining gap
+/// (scaled).
+std::pair<Eigen::Vector2d, double> fixed_arc_length_force(const Whisker& w, const detail::Scales& sc,
+                                                          const Eigen::Vector3d& goal_B, double s, Eigen::Vector2d f,
+                                                          int iterations = 30) {
   using D = Dual<3>;
-  auto evaluate = [&](const Eigen::Vector2d& f, Eigen::Matrix<double, 3, 2>& J, Eigen::Vector3d& gap) {
-    const std::array<D, 3> u{D::variable(f[0], 0), D::variable(f[1], 1), D(s)};
+  auto evaluate = [&](const Eigen::Vector2d& f_, Eigen::Matrix<double, 3, 2>& J, Eigen::Vector3d& gap) {
+    const std::array<D, 3> u{D::variable(f_[0], 0), D::variable(f_[1], 1), D(s)};
     const auto c = detail::contact_at<D>(w, sc, u);
     const D* p[3] = {&c.p_contact_B.x, &c.p_contact_B.y, &c.p_contact_B.z};
     for (int i = 0; i < 3; ++i) {
-      gap[i] = (target_B[i] - p[i]->v) / sc.length;
+      gap[i] = (goal_B[i] - p[i]->v) / sc.length;
       J(i, 0) = p[i]->d[0] / sc.length;
       J(i, 1) = p[i]->d[1] / sc.length;
     }
   };
-  Eigen::Vector2d f = Eigen::Vector2d::Zero();
   Eigen::Matrix<double, 3, 2> J;
   Eigen::Vector3d gap;
   evaluate(f, J, gap);
-  for (int it = 0; it < 30; ++it) {
+  for (int it = 0; it < iterations; ++it) {
     const Eigen::Vector2d step = J.colPivHouseholderQr().solve(gap);
     double t = 1.0;
     Eigen::Matrix<double, 3, 2> J_try;
@@ -74,6 +78,33 @@ Eigen::Vector3d fixed_arc_length_start(const Whisker& w, const detail::Scales& s
     J = J_try;
     gap = gap_try;
     if (small) break;
+  }
+  return {f, gap.norm()};
+}
+
+/// Unknowns at arc length s (scaled) with the force that brings the contact at s closest to the target, from
+/// zero force. With `search`, if that leaves a gap, Gauss-Newton also runs a few steps from each of a grid of
+/// forces (12 directions of (F_y, F_z) x magnitudes 1/2 to 16 in units of E I_0 / L^2) and then to the end
+/// from the best of them: a large load (2 mN at 21 mm on a 30 mm whisker is ~7 units) is out of reach of the
+/// start from zero, which stops in another minimum of the gap, and the scan would then return a neighbouring
+/// root instead of the load at the hint.
+Eigen::Vector3d fixed_arc_length_start(const Whisker& w, const detail::Scales& sc, const Eigen::Vector3d& target_B,
+                                       double s, bool search, double tolerance) {
+  auto [f, gap] = fixed_arc_length_force(w, sc, target_B, s, Eigen::Vector2d::Zero());
+  if (search && gap > tolerance) {
+    constexpr int screening_steps = 4;
+    Eigen::Vector2d best = f;
+    double best_gap = gap;
+    for (int i = 0; i < 12 && best_gap > tolerance; ++i) {
+      const double angle = 2.0 * std::numbers::pi * i / 12.0;
+      for (double magnitude = 0.5; magnitude <= 16.0 && best_gap > tolerance; magnitude *= 2.0) {
+        const Eigen::Vector2d start(magnitude * std::cos(angle), magnitude * std::sin(angle));
+        const auto [g, gap_g] = fixed_arc_length_force(w, sc, target_B, s, start, screening_steps);
+        if (gap_g < best_gap) std::tie(best, best_gap) = std::pair(g, gap_g);
+      }
+    }
+    const auto [g, gap_g] = fixed_arc_length_force(w, sc, target_B, s, best);
+    if (gap_g < gap) f = g;
   }
   return {f[0], f[1], s};
 }
@@ -122,9 +153,12 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
     std::vector<double> starts = {h};
     for (double d : {0.01, 0.02, 0.05, 0.1, 0.2}) starts.insert(starts.end(), {h - d, h + d});
     for (int i = 1; i <= 10; ++i) starts.push_back(0.1 * i);
-    for (double s_try : starts) {
-      if (s_try <= 0.0 || s_try > 1.0) continue;
-      keep(attempt_point(w, sc, target_B, fixed_arc_length_start(w, sc, target_B, s_try), options));
+    for (std::size_t i = 0; i < starts.size(); ++i) {
+      if (starts[i] <= 0.0 || starts[i] > 1.0) continue;
+      const bool at_hint = hint && i == 0;  // the start that decides "the root nearest the hint"
+      keep(attempt_point(w, sc, target_B,
+                         fixed_arc_length_start(w, sc, target_B, starts[i], at_hint, options.tolerance / sc.length),
+                         options));
     }
     if (hint && !warm)
       for (const auto& f : found)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vibrissa/core/checks.hpp"
 #include "vibrissa/trial/statistics.hpp"
 
 namespace vibrissa::trial {
@@ -48,7 +49,7 @@ FrictionAnalysis analyse_friction(const PipelineResult& r, Mode mode, const Fric
   for (int b = 0; b <= o.histogram_bins; ++b) a.histogram_edges[static_cast<std::size_t>(b)] = o.histogram_max * b / o.histogram_bins;
   a.histogram_counts.assign(static_cast<std::size_t>(o.histogram_bins), 0);
   if (used_mu.empty()) {
-    a.warnings.push_back("mu: no contact frame with F_N >= " + std::to_string(o.outlier_normal_force * 1e3) +
+    a.warnings.push_back("mu: no contact frame with F_N >= " + format_value(o.outlier_normal_force * 1e3) +
                          " mN outside the first and last two frames of a contact period (is the object in reach?)");
     return a;
   }

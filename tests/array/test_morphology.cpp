@@ -3,11 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
 #include <numbers>
 
 #include <Eigen/Geometry>
 
 #include "vibrissa/array/morphology.hpp"
+#include "../core/test_helpers.hpp"
 
 using namespace vibrissa;
 using namespace vibrissa::array;
@@ -49,10 +54,12 @@ TEST(Morphology, TowalCheckValuesOfTheDataSheet) {
   EXPECT_NEAR(a0.arc_length / mm, 46.402, 1e-3);
   EXPECT_NEAR(e6.arc_length / mm, 7.705, 1e-3);
   EXPECT_NEAR(a0.curvature * mm, 0.01175, 5e-6);
-  // Euler angles of A0 (COL 1, ROW 1): theta = 10.6475 + 37.3178, phi = -15.8761 + 47.3263,
-  // zeta = 18.77 - 11.3485 - 4.9844 (deg).
+  // Angles of A0 (COL 1, ROW 1): theta = 10.6475 + 37.3178, zeta = 18.77 - 11.3485 - 4.9844 (deg); phi by the
+  // default 'projection' method: atan(tan(phi_P) cos(90° - theta)) with phi_P = 1.0988 - 18.0334 + 50.6005;
+  // by 'euler': -15.8761 + 47.3263.
   EXPECT_NEAR(a0.theta_rest, rad(47.9653), 1e-9);
-  EXPECT_NEAR(a0.phi_rest, rad(31.4502), 1e-9);
+  EXPECT_NEAR(a0.phi_rest, std::atan(std::tan(rad(33.6659)) * std::cos(rad(42.0347))), 1e-12);
+  EXPECT_NEAR(find(towal2011(Sides::right, PhiMethod::euler), "A0R").phi_rest, rad(31.4502), 1e-9);
   EXPECT_NEAR(a0.zeta_rest, rad(2.4371), 1e-9);
 }
 
@@ -164,4 +171,119 @@ TEST(Morphology, ByNameAndUnknownNamesAreErrorsNamingTheField) {
   }
   const Morphology sel = select_whiskers(towal2011(Sides::both), {"C2", "D1R"});
   EXPECT_EQ(sel.whiskers.size(), 3u);
+}
+
+// --- RatMap Toolbox v1.1 (tests/data/ratmap/README.md): placement and φ of every whisker, each TGL_PHI method ---
+namespace {
+
+struct RatMapRow {
+  std::map<std::string, std::string> cell;
+  [[nodiscard]] double num(const std::string& key) const { return std::stod(cell.at(key)); }
+  /// "LA0" (toolbox) -> "A0L" (vibrissa's label).
+  [[nodiscard]] std::string label() const {
+    const std::string& w = cell.at("whisker");
+    return w.substr(1) + w.substr(0, 1);
+  }
+};
+
+std::vector<RatMapRow> read_ratmap(const std::string& file) {
+  std::ifstream in(std::string(VIBRISSA_SOURCE_DIR) + "/tests/data/ratmap/" + file);
+  if (!in) throw std::runtime_error("missing fixture " + file);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  std::stringstream hs(line);
+  for (std::string c; std::getline(hs, c, ',');) header.push_back(c);
+  std::vector<RatMapRow> rows;
+  while (std::getline(in, line)) {
+    RatMapRow r;
+    std::stringstream ls(line);
+    std::size_t i = 0;
+    for (std::string c; std::getline(ls, c, ',');) r.cell[header.at(i++)] = c;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+PhiMethod toolbox_method(const std::string& tgl_phi) {
+  if (tgl_phi == "proj") return PhiMethod::projection;
+  if (tgl_phi == "proj_phi_only") return PhiMethod::projection_phi_only;
+  if (tgl_phi == "euler") return PhiMethod::euler;
+  throw std::runtime_error("unknown TGL_PHI " + tgl_phi);
+}
+
+/// Toolbox point k of a whisker as vibrissa places it: the parabola point at the toolbox's x, mapped by
+/// vibrissa's base point and R_HB.
+Eigen::Vector3d placed_toolbox_point(const WhiskerSpec& s, const RatMapRow& r, int k, int points) {
+  const double x = k * r.num("x_tip_mm") / (points - 1) * mm;
+  return s.p_H_base + R_HB(s.side, s.theta_rest, s.phi_rest, s.zeta_rest) *
+                          Eigen::Vector3d(x, s.curvature * x * x, 0.0);
+}
+
+}  // namespace
+
+TEST(Morphology, TowalReproducesTheRatMapToolboxForEachPhiMethod) {
+  // Every whisker of both sides, every point the toolbox returns, within 1 µm (measured: < 1e-13 m).
+  const std::vector<RatMapRow> rows = read_ratmap("ratmap_v1_1.csv");
+  ASSERT_EQ(rows.size(), 3u * 62u);
+  constexpr int points = 4;
+  std::map<std::string, double> worst;
+  for (const RatMapRow& r : rows) {
+    const std::string tgl = r.cell.at("method");
+    const Morphology m = towal2011(Sides::both, toolbox_method(tgl));
+    const WhiskerSpec& s = find(m, r.label());
+    EXPECT_NEAR(s.arc_length / mm, r.num("s_mm"), 1e-12) << r.label();
+    EXPECT_NEAR(s.curvature * mm, r.num("a_per_mm"), 1e-15) << r.label();
+    EXPECT_NEAR(s.phi_rest, -r.num("phi_rad"), 1e-14) << tgl << " " << r.label();  // toolbox rotates by Ry(C_phi)
+    for (int k = 0; k < points; ++k) {
+      const std::string n = std::to_string(k);
+      const Eigen::Vector3d ref(r.num("x" + n + "_mm"), r.num("y" + n + "_mm"), r.num("z" + n + "_mm"));
+      const double error = (placed_toolbox_point(s, r, k, points) - ref * mm).norm();
+      worst[tgl] = std::max(worst[tgl], error);
+      EXPECT_LT(error, 1e-6) << tgl << " " << r.label() << " point " << k;
+    }
+  }
+  for (const auto& [tgl, e] : worst) {
+    std::cout << "RatMap " << tgl << ": worst point error " << e << " m\n";
+    EXPECT_LT(e, 1e-12) << tgl;
+  }
+}
+
+TEST(Morphology, TowalDefaultIsTheToolboxDefaultProjection) {
+  // The default reproduces 'proj'; 'euler' moves the tip of A0 by millimetres (the reason for the option).
+  const std::vector<RatMapRow> rows = read_ratmap("ratmap_v1_1.csv");
+  const Morphology def = towal2011(Sides::right);
+  const Morphology proj = towal2011(Sides::right, PhiMethod::projection);
+  const Morphology euler = towal2011(Sides::right, PhiMethod::euler);
+  for (std::size_t i = 0; i < def.whiskers.size(); ++i) EXPECT_EQ(def.whiskers[i].phi_rest, proj.whiskers[i].phi_rest);
+  for (const RatMapRow& r : rows) {
+    if (r.cell.at("method") != "proj" || r.label() != "A0R") continue;
+    const double tip_shift = (placed_toolbox_point(find(proj, "A0R"), r, 3, 4) -
+                              placed_toolbox_point(find(euler, "A0R"), r, 3, 4)).norm();
+    EXPECT_GT(tip_shift, 3e-3);
+    EXPECT_LT(tip_shift, 4e-3);
+  }
+}
+
+TEST(Morphology, TowalElevationTakesTheToolboxBranchesForAnyProjectionTheta) {
+  // 'W_th' overrides from 5° to 175° send both sides through every quadrant branch of 'proj' and 'proj_phi_only'.
+  const std::vector<RatMapRow> rows = read_ratmap("ratmap_v1_1_phi_branches.csv");
+  ASSERT_EQ(rows.size(), 2u * 8u * 62u);
+  for (const RatMapRow& r : rows) {
+    const std::string& w = r.cell.at("whisker");
+    int row = 0, column = 0;
+    parse_whisker_name(w.substr(1), row, column, "fixture");
+    const Side side = w[0] == 'R' ? Side::right : Side::left;
+    const double phi = towal_elevation(toolbox_method(r.cell.at("method")), side, r.num("theta_projection_deg"),
+                                       column + 1, row);
+    EXPECT_NEAR(phi, -r.num("phi_rad"), 1e-14) << r.cell.at("method") << " " << w << " " << r.cell.at("theta_projection_deg");
+  }
+  EXPECT_THROW(towal_elevation(PhiMethod::projection, Side::right, 181.0, 1, 1), std::invalid_argument);
+}
+
+TEST(Morphology, PhiMethodNamesAndUnknownOnesAreErrorsNamingTheField) {
+  for (const PhiMethod m : {PhiMethod::projection, PhiMethod::projection_phi_only, PhiMethod::euler})
+    EXPECT_EQ(phi_method_from_string(to_string(m)), m);
+  EXPECT_EQ(test::invalid_message([] { phi_method_from_string("proj"); }),
+            "morphology.phi_method must be 'projection', 'projection_phi_only' or 'euler', got 'proj'");
 }

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "vibrissa/array/error_bound.hpp"
+#include "vibrissa/array/morphology.hpp"
 #include "vibrissa/array/sweep.hpp"
 #include "vibrissa/core/pose.hpp"
 #include "vibrissa/io/array_config.hpp"
@@ -261,4 +262,23 @@ TEST(ArrayConfig, InvalidConfigsNameTheField) {
   j = base_config();
   j["morphology"]["source"] = "missing_table.csv";
   expect_config_error(j, "morphology.source");
+  j = base_config();
+  j["morphology"]["phi_method"] = "proj";  // the toolbox's spelling is not vibrissa's
+  expect_config_error(j, "morphology.phi_method must be 'projection', 'projection_phi_only' or 'euler', got 'proj'");
+  j = base_config();
+  j["morphology"]["source"] = "belli2018";
+  j["morphology"]["phi_method"] = "euler";  // Belli's table gives φ directly
+  expect_config_error(j, "morphology.phi_method applies only to source 'towal2011', got source 'belli2018'");
+}
+
+TEST(ArrayConfig, PhiMethodSelectsTheTowalElevation) {
+  json j = base_config();
+  j["morphology"]["whiskers"] = {"E1"};
+  const double projection = io::array_config_from_json(j).morphology.whiskers.at(0).phi_rest;
+  j["morphology"]["phi_method"] = "euler";
+  const double euler = io::array_config_from_json(j).morphology.whiskers.at(0).phi_rest;
+  EXPECT_EQ(projection,
+            array::select_whiskers(array::towal2011(array::Sides::right), {"E1"}).whiskers.at(0).phi_rest);
+  EXPECT_GT(std::abs(projection - euler), 0.01);
+  EXPECT_NEAR(euler, (-15.8761 * 5 + 47.3263) * std::numbers::pi / 180.0, 1e-12);  // Euler-φ regression, ROW 5
 }

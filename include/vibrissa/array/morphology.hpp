@@ -51,16 +51,32 @@ void validate(const WhiskerSpec& spec);
 
 struct Morphology {
   std::string source;  ///< "towal2011", "belli2018", or the file it was read from
+  std::string phi_method;  ///< towal2011: the φ method used (to_string(PhiMethod)); empty for other sources
   std::vector<WhiskerSpec> whiskers;
 };
 
-/// Towal et al. 2011 "RatMap" equations (data sheet §1): 31 whiskers per side, radius from Belli's model.
-Morphology towal2011(Sides sides = Sides::right);
+/// How the Towal 2011 elevation φ of each whisker is obtained: the three `TGL_PHI` methods of the RatMap Toolbox
+/// v1.1 (`Get_RatMap.m`, Towal et al. 2011). `projection` ('proj', the toolbox's default: "projection angles match
+/// those shown in the publication") converts the projection angles φ_P and ψ_P, `projection_phi_only`
+/// ('proj_phi_only') converts φ_P alone, `euler` uses the regression of the Euler φ directly. See docs/array.md.
+enum class PhiMethod { projection, projection_phi_only, euler };
+std::string_view to_string(PhiMethod method);
+/// "projection" / "projection_phi_only" / "euler"; throws std::invalid_argument naming `field` and the value.
+PhiMethod phi_method_from_string(std::string_view name, const char* field = "morphology.phi_method");
+
+/// Elevation φ [rad] of a Towal 2011 whisker (vibrissa's phi_rest, > 0 points up; the toolbox's C_phi negated)
+/// for a projection angle θ_P [deg] (the toolbox's domain 0..180; outside it throws) at (COL, ROW), as the
+/// RatMap Toolbox v1.1 computes it, quadrant branches and all.
+double towal_elevation(PhiMethod method, Side side, double theta_projection_deg, int COL, int ROW);
+
+/// Towal et al. 2011 "RatMap" equations (data sheet §1): 31 whiskers per side, radius from Belli's model; φ by
+/// `phi_method` (default as the RatMap Toolbox: projection).
+Morphology towal2011(Sides sides = Sides::right, PhiMethod phi_method = PhiMethod::projection);
 /// Belli et al. 2018 average-rat table (data sheet §2): 27 whiskers per side.
 Morphology belli2018(Sides sides = Sides::right);
-/// "towal2011" or "belli2018"; throws std::invalid_argument naming `field` for any other name.
+/// "towal2011" (with `phi_method`) or "belli2018"; throws std::invalid_argument naming `field` for any other name.
 Morphology morphology_by_name(std::string_view name, Sides sides = Sides::right,
-                              const char* field = "morphology.source");
+                              PhiMethod phi_method = PhiMethod::projection, const char* field = "morphology.source");
 
 /// User tables (CSV/JSON) are read by io/morphology_table.hpp.
 
