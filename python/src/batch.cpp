@@ -250,9 +250,9 @@ void store(const Outputs::Raw& r, py::ssize_t i, const Solution& s) {
   r.force_magnitude[i] = s.force_magnitude;
   r.arc_length[i] = s.arc_length;
   r.angle[i] = s.angle;
-  put3(r.contact_point, s.contact_point);
-  put3(r.force, s.force);
-  put3(r.moment, s.moment);
+  put3(r.contact_point, s.contact_point_W);
+  put3(r.force, s.force_W);
+  put3(r.moment, s.moment_W);
   put3(r.wf_force, s.whisker_frame.force);
   put3(r.wf_moment, s.whisker_frame.moment);
   r.FT[i] = s.whisker_frame.FT;
@@ -269,8 +269,8 @@ void store(const Outputs::Raw& r, py::ssize_t i, const Solution& s) {
   st[3] = s.state.arc_length;
   if (r.shape) {
     double* dst = r.shape + 3 * r.nodes * i;
-    if (static_cast<py::ssize_t>(s.shape.size()) == r.nodes)
-      for (std::size_t k = 0; k < s.shape.size(); ++k) std::copy(s.shape[k].data(), s.shape[k].data() + 3, dst + 3 * k);
+    if (static_cast<py::ssize_t>(s.shape_W.size()) == r.nodes)
+      for (std::size_t k = 0; k < s.shape_W.size(); ++k) std::copy(s.shape_W[k].data(), s.shape_W[k].data() + 3, dst + 3 * k);
     else
       std::fill(dst, dst + 3 * r.nodes, kNaN);
   }

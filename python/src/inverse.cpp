@@ -83,7 +83,7 @@ void bind_inverse(py::module_& m) {
       .def_readonly("arc_length", &BaseWrenchRoot::arc_length, "s [m]")
       .def_readonly("force_magnitude", &BaseWrenchRoot::force_magnitude, "f [N]")
       .def_readonly("angle", &BaseWrenchRoot::angle, "zeta = atan2(F_z, F_y) of the loaded link [rad]")
-      .def_property_readonly("contact_point", [](const BaseWrenchRoot& r) { return to_array(r.contact_point); },
+      .def_property_readonly("contact_point", [](const BaseWrenchRoot& r) { return to_array(r.contact_point_W); },
                              "world [m]")
       .def_readonly("chi2", &BaseWrenchRoot::chi2, "whitened squared residual")
       .def_readonly("state", &BaseWrenchRoot::state, "the fitted unknowns (a LoadState)")

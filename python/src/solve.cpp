@@ -158,11 +158,11 @@ void bind_solve(py::module_& m) {
       .def_readonly("force_magnitude", &Solution::force_magnitude, "|F| [N].")
       .def_readonly("arc_length", &Solution::arc_length, "Arc length of contact s [m].")
       .def_readonly("angle", &Solution::angle, "Direction of F about the loaded link's axis, atan2(Fz, Fy) [rad].")
-      .def_property_readonly("contact_point", [](const Solution& s) { return to_array(s.contact_point); },
+      .def_property_readonly("contact_point", [](const Solution& s) { return to_array(s.contact_point_W); },
                              "Contact point, world [m], shape (3,).")
-      .def_property_readonly("force", [](const Solution& s) { return to_array(s.force); },
+      .def_property_readonly("force", [](const Solution& s) { return to_array(s.force_W); },
                              "Force transmitted to the follicle (the contact force), world [N], shape (3,).")
-      .def_property_readonly("moment", [](const Solution& s) { return to_array(s.moment); },
+      .def_property_readonly("moment", [](const Solution& s) { return to_array(s.moment_W); },
                              "Moment of the contact force about the base, world [N·m], shape (3,).")
       .def_readonly("whisker_frame", &Solution::whisker_frame, "Base signals in the whisker frame (spec §2.4).")
       .def_readonly("normal_force", &Solution::normal_force, "Component of F normal to the edge [N] (edge modes) or None.")
@@ -171,7 +171,7 @@ void bind_solve(py::module_& m) {
       .def_readonly("iterations", &Solution::iterations, "Solver iterations.")
       .def_property_readonly(
           "shape",
-          [](const Solution& s) { return to_array(s.shape); },
+          [](const Solution& s) { return to_array(s.shape_W); },
           "Deflected nodes, world [m], shape (N+1, 3), base first; (0, 3) when options.compute_shape is False.")
       .def_readonly("other_root_arc_length", &Solution::other_root_arc_length,
                     "Arc length [m] of another root, when options.find_other_roots found one, else None.")

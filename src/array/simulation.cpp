@@ -76,9 +76,9 @@ class PairRun {
  private:
   void record(std::size_t k, const TrackedFrame& fr) {
     const Solution& s = fr.solution;
-    put3(r_.contact_W, k, s.contact_point);
-    put3(r_.force_W, k, s.force);
-    put3(r_.moment_W, k, s.moment);
+    put3(r_.contact_W, k, s.contact_point_W);
+    put3(r_.force_W, k, s.force_W);
+    put3(r_.moment_W, k, s.moment_W);
     put3(r_.force_B, k, s.whisker_frame.force);
     put3(r_.moment_B, k, s.whisker_frame.moment);
     r_.s_applied[k] = s.arc_length;
