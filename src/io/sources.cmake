@@ -6,6 +6,7 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/json_input.cpp
   ${CMAKE_CURRENT_LIST_DIR}/figure_files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/h5_file.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/code_tables.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_arrays.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_csv.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_h5.cpp

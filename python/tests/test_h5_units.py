@@ -1,0 +1,83 @@
+"""Every dataset of every HDF5 file the CLI writes states its units (docs/formats.md, "Units and codes"): a
+new dataset without a `units` attribute fails here. Code datasets (units "code") carry their code table."""
+
+import csv
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+from test_cli_outputs import SMALL_ARRAY, run
+from test_recon import write_views
+
+h5py = pytest.importorskip("h5py")
+
+
+def datasets(path):
+    found = []
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda name, obj: found.append(name) if isinstance(obj, h5py.Dataset) else None)
+    return found
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def assert_units_everywhere(path):
+    names = datasets(path)
+    assert names, path
+    with h5py.File(path, "r") as f:
+        for name in names:
+            attrs = f[name].attrs
+            assert "units" in attrs, f"{path}: dataset {name} has no units attribute"
+            units = text(attrs["units"])
+            assert units, f"{path}: dataset {name} has empty units"
+            if units == "code":
+                assert text(attrs["codes"]), f"{path}: code dataset {name} has no code table"
+                assert f[name].dtype.kind == "i", f"{path}: code dataset {name} is not integer"
+    return names
+
+
+def code_table(attr):
+    return {int(code): label for code, label in (entry.split(" ", 1) for entry in text(attr).split(", "))}
+
+
+def test_every_cli_hdf5_dataset_has_units(cli, tmp_path):
+    trial = tmp_path / "trial.h5"
+    run(cli, "synth", trial, "--duration", "0.1", "--shapes")
+    names = assert_units_everywhere(trial)
+    assert {"time", "theta", "contact", "shape"} <= set(names)
+    with h5py.File(trial, "r") as f:
+        assert text(f["theta"].attrs["units"]) == "rad" and text(f["shape"].attrs["units"]) == "m"
+
+    out = tmp_path / "results"
+    run(cli, "trial", trial, "--out", out, "--no-figures", "--mu", "0.3")
+    names = assert_units_everywhere(out / "frames.h5")
+    with h5py.File(out / "frames.h5", "r") as f, open(out / "frames.csv") as c:
+        rows = list(csv.DictReader(c))
+        g = f["frames"]
+        assert text(g["edge_FD_deg"].attrs["units"]) == "deg" and text(g["edge_MB"].attrs["units"]) == "N m"
+        status = g["edge_status"]
+        assert status.dtype == np.int8 and text(status.attrs["units"]) == "code"
+        table = code_table(status.attrs["codes"])
+        assert table == {-1: "not_in_contact", 0: "converged", 1: "no_contact", 2: "slipped_off", 3: "not_converged"}
+        labels = [r["edge_status"] for r in rows]
+        assert [table[int(v)] for v in status[()]] == labels
+        assert "converged" in labels and "not_in_contact" in labels
+
+    array_cfg = tmp_path / "array.json"
+    array_cfg.write_text(json.dumps(SMALL_ARRAY))
+    run(cli, "array", array_cfg, "--out", tmp_path / "array", "--no-figures")
+    names = assert_units_everywhere(tmp_path / "array" / "array.h5")
+    assert {"state", "solver_status", "whisker", "render/deflected"} <= set(names)
+    with h5py.File(tmp_path / "array" / "array.h5", "r") as f:
+        assert code_table(f["state"].attrs["codes"]) == {0: "free", 1: "contact", 2: "pushed_past"}
+        assert code_table(f["solver_status"].attrs["codes"])[-1] == "not_in_contact"
+
+    write_views(tmp_path)
+    subprocess.run([cli, "reconstruct", "--top", str(tmp_path / "top.csv"), "--front", str(tmp_path / "front.csv"),
+                    "--calibration", str(tmp_path / "cams.json"), "-o", str(tmp_path / "recon.h5")],
+                   check=True, capture_output=True)
+    assert {"reconstructed", "reprojection_px"} <= set(assert_units_everywhere(tmp_path / "recon.h5"))
