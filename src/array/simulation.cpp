@@ -229,9 +229,11 @@ ArrayResult simulate_array(const SimulationConfig& c, const RunControl& control)
   r.state.assign(total, 0);
   r.solver_status.assign(total, -1);
   r.edge.assign(total, -1);
-  for (auto* v : {&r.s_applied, &r.FT, &r.MB, &r.FD, &r.MD, &r.normal_force, &r.edge_force, &r.z_edge, &r.z_error})
-    v->assign(total, 0.0);
-  for (auto* v : {&r.contact_W, &r.force_W, &r.moment_W, &r.force_B, &r.moment_B, &r.base_W}) v->assign(3 * total, 0.0);
+  // Without contact the loads are zero, and the contact's position and direction do not exist (NaN).
+  for (auto* v : {&r.FT, &r.MB, &r.normal_force, &r.edge_force}) v->assign(total, 0.0);
+  for (auto* v : {&r.s_applied, &r.FD, &r.MD, &r.z_edge, &r.z_error}) v->assign(total, kNaN);
+  for (auto* v : {&r.force_W, &r.moment_W, &r.force_B, &r.moment_B, &r.base_W}) v->assign(3 * total, 0.0);
+  r.contact_W.assign(3 * total, kNaN);
   for (auto* v : {&r.theta, &r.phi, &r.zeta}) v->assign(r.n_whiskers * r.n_frames, 0.0);
   r.render_frames = c.render_frames;
   const std::size_t shape_size = c.render_frames.size() * r.n_whiskers * r.n_nodes * 3;

@@ -1,5 +1,6 @@
 #include "vibrissa/io/array_outputs.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <ostream>
 #include <stdexcept>
@@ -92,15 +93,23 @@ void create_array_csv(const ArrayResult& r, const std::string& path) {
       for (std::size_t fr = 0; fr < r.n_frames; ++fr) {
         const std::size_t k = r.index(p, w, fr);
         const auto v = [&](const std::vector<double>& a, int i) { return a[3 * k + static_cast<std::size_t>(i)]; };
-        std::fprintf(f, "%.6g,%s,%zu,%.9g,%s,%d,%.9g,%.9g,%.9g,%.9g", to_deg(r.pitches[p]), r.labels[w].c_str(), fr,
-                     r.times[fr], std::string(to_string(static_cast<ContactState>(r.state[k]))).c_str(), r.edge[k],
-                     r.s_applied[k] * 1e3, v(r.contact_W, 0) * 1e3, v(r.contact_W, 1) * 1e3, v(r.contact_W, 2) * 1e3);
+        // ",value", or "," alone where the value does not exist (NaN).
+        const auto cell = [f](double x) {
+          if (std::isnan(x)) std::fputc(',', f);
+          else std::fprintf(f, ",%.9g", x);
+        };
+        std::fprintf(f, "%.6g,%s,%zu,%.9g,%s,%d", to_deg(r.pitches[p]), r.labels[w].c_str(), fr, r.times[fr],
+                     std::string(to_string(static_cast<ContactState>(r.state[k]))).c_str(), r.edge[k]);
+        cell(r.s_applied[k] * 1e3);
+        for (int i = 0; i < 3; ++i) cell(v(r.contact_W, i) * 1e3);
         for (const auto* a : {&r.force_W, &r.moment_W, &r.force_B, &r.moment_B}) {
           const double unit = (a == &r.force_W || a == &r.force_B) ? 1e3 : 1e6;
-          for (int i = 0; i < 3; ++i) std::fprintf(f, ",%.9g", v(*a, i) * unit);
+          for (int i = 0; i < 3; ++i) cell(v(*a, i) * unit);
         }
-        std::fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", r.FT[k] * 1e3, r.MB[k] * 1e6, to_deg(r.FD[k]),
-                     to_deg(r.MD[k]), r.normal_force[k] * 1e3, r.z_error[k] * 1e3);
+        for (double x : {r.FT[k] * 1e3, r.MB[k] * 1e6, to_deg(r.FD[k]), to_deg(r.MD[k]), r.normal_force[k] * 1e3,
+                         r.z_error[k] * 1e3})
+          cell(x);
+        std::fputc('\n', f);
       }
   const bool failed = std::ferror(f) != 0;
   if (std::fclose(f) != 0 || failed) throw std::runtime_error("cannot write '" + path + "' (disk full?)");

@@ -192,6 +192,9 @@ nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
   const Trial& t = r.pre.trial;
   json j;
   j["source"] = t.source;
+  // The units the trial file declared; its data were converted to SI on reading (every output is SI).
+  const Units& u = t.meta.declared_units;
+  j["input_units"] = {{"length", u.length}, {"angle", u.angle}, {"time", u.time}};
   j["frames"] = t.frames();
   j["sample_rate_Hz"] = r.pre.sample_rate_hz;
   j["contact_periods"] = r.pre.periods.size();

@@ -1,5 +1,6 @@
-"""Every dataset of every HDF5 file the CLI writes states its units (docs/formats.md, "Units and codes"): a
-new dataset without a `units` attribute fails here. Code datasets (units "code") carry their code table."""
+"""Outputs describe themselves (docs/formats.md, "Units and codes"): every dataset of every HDF5 file the CLI
+writes states its units (a new dataset without a `units` attribute fails here), code datasets (units "code")
+carry their code table, and values that do not exist are NaN (empty in CSV)."""
 
 import csv
 import json
@@ -7,6 +8,8 @@ import subprocess
 
 import numpy as np
 import pytest
+
+import vibrissa
 
 from test_cli_outputs import SMALL_ARRAY, run
 from test_recon import write_views
@@ -69,15 +72,55 @@ def test_every_cli_hdf5_dataset_has_units(cli, tmp_path):
 
     array_cfg = tmp_path / "array.json"
     array_cfg.write_text(json.dumps(SMALL_ARRAY))
-    run(cli, "array", array_cfg, "--out", tmp_path / "array", "--no-figures")
+    run(cli, "array", array_cfg, "--out", tmp_path / "array", "--no-figures", "--csv")
     names = assert_units_everywhere(tmp_path / "array" / "array.h5")
     assert {"state", "solver_status", "whisker", "render/deflected"} <= set(names)
     with h5py.File(tmp_path / "array" / "array.h5", "r") as f:
         assert code_table(f["state"].attrs["codes"]) == {0: "free", 1: "contact", 2: "pushed_past"}
         assert code_table(f["solver_status"].attrs["codes"])[-1] == "not_in_contact"
+        # Free frames: no contact point, arc length, directions or z_error (NaN); zero loads.
+        state = f["state"][()]
+        free, touching = state == 0, state == 1
+        assert free.any() and touching.any()
+        for name in ("s_applied", "FD", "MD", "z_edge", "z_error"):
+            assert np.isnan(f[name][()][free]).all() and np.isfinite(f[name][()][touching]).all(), name
+        assert np.isnan(f["contact_point_W"][()][free]).all()
+        assert np.isfinite(f["contact_point_W"][()][touching]).all()
+        assert (f["FT"][()][free] == 0).all() and (f["force_W"][()][free] == 0).all()
+    with open(tmp_path / "array" / "array.csv") as c:
+        rows = list(csv.DictReader(c))
+    free_rows = [r for r in rows if r["state"] == "free"]
+    contact_rows = [r for r in rows if r["state"] == "contact"]
+    assert free_rows and contact_rows
+    for name in ("s_applied_mm", "contact_x_mm", "FD_deg", "MD_deg", "z_error_mm"):
+        assert all(r[name] == "" for r in free_rows) and all(r[name] != "" for r in contact_rows), name
+    assert all(float(r["FT_mN"]) == 0.0 for r in free_rows)
 
     write_views(tmp_path)
     subprocess.run([cli, "reconstruct", "--top", str(tmp_path / "top.csv"), "--front", str(tmp_path / "front.csv"),
                     "--calibration", str(tmp_path / "cams.json"), "-o", str(tmp_path / "recon.h5")],
                    check=True, capture_output=True)
     assert {"reconstructed", "reprojection_px"} <= set(assert_units_everywhere(tmp_path / "recon.h5"))
+
+
+def test_trial_summary_records_the_declared_input_units(cli, tmp_path):
+    """A trial file in mm, deg and ms: summary.json says so (its data were converted to SI on reading)."""
+    synth = tmp_path / "synth.h5"
+    run(cli, "synth", synth, "--duration", "0.1")
+    t = vibrissa.read_trial(str(synth))
+    lines = ["# vibrissa-trial: 1", "# units: length=mm angle=deg time=ms", "# base_radius: 0.1"]
+    lines += ["# edge: " + " ".join(repr(v) for v in np.concatenate([e[:3] * 1e3, e[3:]])) for e in t.edges]
+    lines += ["# rest_point: " + " ".join(repr(v) for v in p * 1e3) for p in t.rest_shape]
+    lines.append("time,base_x,base_y,base_z,theta,phi,contact")
+    for i in range(len(t)):
+        row = [t.time[i] * 1e3, *(t.base_W[i] * 1e3), np.degrees(t.theta[i]), np.degrees(t.phi[i]), t.contact[i]]
+        lines.append(",".join(repr(float(v)) for v in row))
+    trial = tmp_path / "trial_mm.csv"
+    trial.write_text("\n".join(lines) + "\n")
+    out = tmp_path / "results"
+    run(cli, "trial", trial, "--out", out, "--no-figures")
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["input_units"] == {"length": "mm", "angle": "deg", "time": "ms"}
+    run(cli, "trial", synth, "--out", tmp_path / "results_si", "--no-figures")
+    summary = json.loads((tmp_path / "results_si" / "summary.json").read_text())
+    assert summary["input_units"] == {"length": "m", "angle": "rad", "time": "s"}
