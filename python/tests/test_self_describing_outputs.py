@@ -124,3 +124,16 @@ def test_trial_summary_records_the_declared_input_units(cli, tmp_path):
     run(cli, "trial", synth, "--out", tmp_path / "results_si", "--no-figures")
     summary = json.loads((tmp_path / "results_si" / "summary.json").read_text())
     assert summary["input_units"] == {"length": "m", "angle": "rad", "time": "s"}
+
+
+def test_mat_trial_files_carry_a_units_struct(cli, tmp_path):
+    loadmat = pytest.importorskip("scipy.io").loadmat
+    trial = tmp_path / "trial.mat"
+    run(cli, "synth", trial, "--duration", "0.1", "--shapes")
+    units = loadmat(trial, squeeze_me=True)["units"]
+    names = set(units.dtype.names)
+    assert {"time", "theta", "contact", "shape", "rest_shape", "edges"} <= names
+    assert str(units["theta"].item()) == "rad" and str(units["time"].item()) == "s"
+    assert str(units["shape"].item()) == "m" and str(units["contact"].item()) == "1"
+    t = vibrissa.read_trial(str(trial))  # the reader ignores the struct
+    assert len(t) > 0 and t.shape_W is not None
