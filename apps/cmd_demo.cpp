@@ -21,12 +21,12 @@ void print(const char* title, const Solution& s, double micros) {
   std::printf("  status            %s (%s)\n", std::string(to_string(s.status)).c_str(), std::string(s.message).c_str());
   std::printf("  solve time        %.1f us, %d iterations, residual %.2e m\n", micros, s.iterations, s.residual);
   std::printf("  arc length s      %.3f mm\n", s.arc_length * 1e3);
-  std::printf("  contact point     (%.3f, %.3f, %.3f) mm, world\n", s.contact_point.x() * 1e3,
-              s.contact_point.y() * 1e3, s.contact_point.z() * 1e3);
-  std::printf("  force F           (%.4f, %.4f, %.4f) mN, world\n", s.force.x() * 1e3, s.force.y() * 1e3,
-              s.force.z() * 1e3);
-  std::printf("  moment M          (%.3f, %.3f, %.3f) uN·m, world, about the base\n", s.moment.x() * 1e6,
-              s.moment.y() * 1e6, s.moment.z() * 1e6);
+  std::printf("  contact point     (%.3f, %.3f, %.3f) mm, world\n", s.contact_point_W.x() * 1e3,
+              s.contact_point_W.y() * 1e3, s.contact_point_W.z() * 1e3);
+  std::printf("  force F           (%.4f, %.4f, %.4f) mN, world\n", s.force_W.x() * 1e3, s.force_W.y() * 1e3,
+              s.force_W.z() * 1e3);
+  std::printf("  moment M          (%.3f, %.3f, %.3f) uN·m, world, about the base\n", s.moment_W.x() * 1e6,
+              s.moment_W.y() * 1e6, s.moment_W.z() * 1e6);
   std::printf("  whisker frame     Fx %.4f mN   Mx %.4f uN·m\n", wf.force.x() * 1e3, wf.moment.x() * 1e6);
   std::printf("                    F_T %.4f mN  M_B %.3f uN·m  F_D %.1f deg  M_D %.1f deg\n", wf.FT * 1e3,
               wf.MB * 1e6, wf.FD * deg, wf.MD * deg);
@@ -68,7 +68,7 @@ void register_demo(CLI::App& app) {
     double t_edge = 0.0, t_point = 0.0;
     const Solution edge = timed([&] { return solve_edge(whisker, peg, std::nullopt, opt); }, t_edge);
     print("Edge mode (frictionless slip along the peg):", edge, t_edge);
-    const Eigen::Vector3d tracked = edge.contact_point + Eigen::Vector3d(0, 0, 1e-3);
+    const Eigen::Vector3d tracked = edge.contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
     const Solution point = timed(
         [&] { return solve_point(whisker, tracked, std::nullopt, opt, nullptr, peg.direction); }, t_point);
     print("Contact-point mode (tracked contact 1 mm above the frictionless one; friction implicit):", point, t_point);

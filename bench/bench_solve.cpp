@@ -70,14 +70,14 @@ BENCHMARK(BM_EdgeWarm);
 
 void BM_PointCold(benchmark::State& state) {
   const Whisker w = bench_whisker();
-  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point + Eigen::Vector3d(0, 0, 1e-3);
+  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
   for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, fast()));
 }
 BENCHMARK(BM_PointCold);
 
 void BM_PointWarm(benchmark::State& state) {
   const Whisker w = bench_whisker();
-  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point + Eigen::Vector3d(0, 0, 1e-3);
+  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
   const Solution near = solve_point(w, target + Eigen::Vector3d(0, 0, 2e-5), std::nullopt, fast());
   for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, fast(), &near.state));
 }
@@ -86,7 +86,7 @@ BENCHMARK(BM_PointWarm);
 void BM_FrictionalEdgeWarm(benchmark::State& state) {
   const Whisker w = bench_whisker();
   const Solution free = solve_edge(w, bench_peg(), std::nullopt, fast());
-  const Eigen::Vector3d previous = free.contact_point - Eigen::Vector3d(0, 0, 2e-3);
+  const Eigen::Vector3d previous = free.contact_point_W - Eigen::Vector3d(0, 0, 2e-3);
   for (auto _ : state)
     benchmark::DoNotOptimize(solve_frictional_edge(w, bench_peg(), 0.48, previous, fast(), &free.state));
 }

@@ -48,8 +48,8 @@ def main() -> None:
 
     counts = sorted({1, 2, args.max_threads} | {2 ** k for k in range(0, 5) if 2 ** k <= args.max_threads})
     print(f"load average {os.getloadavg()[0]:.2f}; cpus={os.cpu_count()} OMP max_threads={vibrissa.max_threads()} frames={F} links={whisker.links}")
-    for label, kwargs in (("independent frames (warm_start=False)", dict(points=points, warm_start=False)),
-                          (f"{args.series} series, warm starts", dict(points=series, warm_start=True))):
+    for label, kwargs in (("independent frames (warm_start=False)", dict(points_W=points, warm_start=False)),
+                          (f"{args.series} series, warm starts", dict(points_W=series, warm_start=True))):
         print(label)
         base_time, base = None, None
         for n in counts:
@@ -57,7 +57,7 @@ def main() -> None:
             if base is None:
                 base_time, base = t, r
             else:
-                assert np.array_equal(base.force, r.force) and np.array_equal(base.status, r.status)
+                assert np.array_equal(base.force_W, r.force_W) and np.array_equal(base.status, r.status)
             print(f"  threads={n:2d}  {t * 1e3:8.1f} ms  {F / t:9.0f} frames/s  speed-up {base_time / t:4.2f}"
                   f"  cpu/wall {cpu / t:4.2f}")
     print(f"load average before the loop: {os.getloadavg()[0]:.2f}")

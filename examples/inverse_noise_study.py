@@ -39,7 +39,7 @@ def identifiability_table(w):
             fwd = vibrissa.solve_force(w, FORCE, frac * L, ZETA)
             # Warm-started at the true contact, so that the linearisation is taken there even when the set
             # cannot tell the contacts apart.
-            r = vibrissa.solve_base_wrench(w, fwd.force, fwd.moment, signals=signals, noise=noise_sd(signals),
+            r = vibrissa.solve_base_wrench(w, fwd.force_W, fwd.moment_W, signals=signals, noise=noise_sd(signals),
                                            warm=fwd)
             idf = r.identifiability
             if not idf.identifiable:
@@ -63,15 +63,15 @@ def monte_carlo(w, fracs, scales, signals, trials, rng):
         for scale in scales:
             sd = noise_sd("all", scale)
             noise = rng.standard_normal((trials, 6)) * sd
-            F.append(fwd.force + noise[:, :3] @ R.T)  # noise in the sensor (whisker) frame B
-            M.append(fwd.moment + noise[:, 3:] @ R.T)
-            truth.append(fwd.contact_point)
-            lin = vibrissa.solve_base_wrench(w, fwd.force, fwd.moment, signals=signals,
+            F.append(fwd.force_W + noise[:, :3] @ R.T)  # noise in the sensor (whisker) frame B
+            M.append(fwd.moment_W + noise[:, 3:] @ R.T)
+            truth.append(fwd.contact_point_W)
+            lin = vibrissa.solve_base_wrench(w, fwd.force_W, fwd.moment_W, signals=signals,
                                              noise=noise_sd(signals, scale), warm=fwd)
             predicted.append(np.sqrt(np.trace(lin.identifiability.contact_point_covariance)))
     # One weighting for every series: the noise scales forces and moments alike, so the fit does not change.
     b = vibrissa.solve_base_wrench_batch(w, np.array(F), np.array(M), signals=signals, noise=noise_sd(signals))
-    err = np.linalg.norm(b.contact_point - np.array(truth)[:, None, :], axis=-1)
+    err = np.linalg.norm(b.contact_point_W - np.array(truth)[:, None, :], axis=-1)
     ok = b.converged
     rms = np.sqrt(np.array([np.mean(e[k] ** 2) for e, k in zip(err, ok)]))
     shape = (len(fracs), len(scales))

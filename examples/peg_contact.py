@@ -41,9 +41,9 @@ def main() -> None:
 
     np.set_printoptions(precision=4)
     wf = solution.whisker_frame
-    print(f"contact at s = {solution.arc_length * 1e3:.3f} mm, point {solution.contact_point * 1e3} mm")
-    print(f"base force, world        F = {solution.force * 1e6} µN (|F| = {solution.force_magnitude * 1e6:.3f} µN)")
-    print(f"base moment, world       M = {solution.moment * 1e9} nN·m")
+    print(f"contact at s = {solution.arc_length * 1e3:.3f} mm, point {solution.contact_point_W * 1e3} mm")
+    print(f"base force, world        F = {solution.force_W * 1e6} µN (|F| = {solution.force_magnitude * 1e6:.3f} µN)")
+    print(f"base moment, world       M = {solution.moment_W * 1e9} nN·m")
     print(f"base force, whisker      (Fx, Fy, Fz) = {wf.force * 1e6} µN")
     print(f"base moment, whisker     (Mx, My, Mz) = {wf.moment * 1e9} nN·m")
     print(f"F_T = {wf.FT * 1e6:.4f} µN, M_B = {wf.MB * 1e9:.4f} nN·m, "
@@ -55,7 +55,7 @@ def main() -> None:
     frames = 60
     theta = np.linspace(-0.3, 0.3, frames)
     angles = np.column_stack([theta, np.zeros(frames), np.zeros(frames)])  # (theta, phi, zeta) per frame
-    sweep = vibrissa.solve_edge_batch(whisker, peg.point, peg.direction, pose_angles=angles, approach=[0, 1, 0])
+    sweep = vibrissa.solve_edge_batch(whisker, peg.point, peg.direction, pose_angles=angles, approach_W=[0, 1, 0])
     print(sweep, "statuses:", dict(zip(*np.unique(sweep.status_names, return_counts=True))))
 
     fig, (ax_shape, ax_signals) = plt.subplots(1, 2, figsize=(11, 4.5))

@@ -13,14 +13,14 @@ void check_contract(const vibrissa::Case& c, const vibrissa::Solution& s) {
   using vibrissa::Status;
   const auto& wf = s.whisker_frame;
   const bool finite = std::isfinite(s.force_magnitude) && std::isfinite(s.arc_length) && std::isfinite(s.angle) &&
-                      s.contact_point.allFinite() && s.force.allFinite() && s.moment.allFinite() &&
+                      s.contact_point_W.allFinite() && s.force_W.allFinite() && s.moment_W.allFinite() &&
                       wf.force.allFinite() && wf.moment.allFinite() && std::isfinite(wf.FT) && std::isfinite(wf.MB) &&
                       std::isfinite(wf.FD) && std::isfinite(wf.MD) && std::isfinite(s.residual) &&
                       (!s.normal_force || std::isfinite(*s.normal_force)) &&
                       (!s.edge_force || std::isfinite(*s.edge_force)) &&
                       (!s.other_root_arc_length || std::isfinite(*s.other_root_arc_length));
   if (!finite) vibrissa::fuzz::finding("non-finite field in a Solution");
-  for (const auto& p : s.shape)
+  for (const auto& p : s.shape_W)
     if (!p.allFinite()) vibrissa::fuzz::finding("non-finite node in Solution::shape");
   // Contact modes report the residual in metres against options.tolerance (dead loads in newtons, the
   // base-wrench inverse as sqrt(chi2), judged against the noise instead).

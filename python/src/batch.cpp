@@ -220,6 +220,8 @@ struct Outputs {
     py::dict wf;
     wf["force"] = wf_force;
     wf["moment"] = wf_moment;
+    wf["Fx"] = py::object(wf_force[py::make_tuple(py::ellipsis(), 0)]);
+    wf["Mx"] = py::object(wf_moment[py::make_tuple(py::ellipsis(), 0)]);
     wf["FT"] = FT;
     wf["MB"] = MB;
     wf["FD"] = FD;
@@ -229,16 +231,16 @@ struct Outputs {
     d["force_magnitude"] = force_magnitude;
     d["arc_length"] = arc_length;
     d["angle"] = angle;
-    d["contact_point"] = contact_point;
-    d["force"] = force;
-    d["moment"] = moment;
+    d["contact_point_W"] = contact_point;
+    d["force_W"] = force;
+    d["moment_W"] = moment;
     d["whisker_frame"] = wf;
     d["normal_force"] = normal_force;
     d["edge_force"] = edge_force;
     d["residual"] = residual;
     d["iterations"] = iterations;
     d["state"] = state;
-    d["shape"] = with_shape ? py::object(shape) : py::object(py::none());
+    d["shape_W"] = with_shape ? py::object(shape) : py::object(py::none());
     return d;
   }
 };
@@ -250,9 +252,9 @@ void store(const Outputs::Raw& r, py::ssize_t i, const Solution& s) {
   r.force_magnitude[i] = s.force_magnitude;
   r.arc_length[i] = s.arc_length;
   r.angle[i] = s.angle;
-  put3(r.contact_point, s.contact_point);
-  put3(r.force, s.force);
-  put3(r.moment, s.moment);
+  put3(r.contact_point, s.contact_point_W);
+  put3(r.force, s.force_W);
+  put3(r.moment, s.moment_W);
   put3(r.wf_force, s.whisker_frame.force);
   put3(r.wf_moment, s.whisker_frame.moment);
   r.FT[i] = s.whisker_frame.FT;
@@ -269,8 +271,8 @@ void store(const Outputs::Raw& r, py::ssize_t i, const Solution& s) {
   st[3] = s.state.arc_length;
   if (r.shape) {
     double* dst = r.shape + 3 * r.nodes * i;
-    if (static_cast<py::ssize_t>(s.shape.size()) == r.nodes)
-      for (std::size_t k = 0; k < s.shape.size(); ++k) std::copy(s.shape[k].data(), s.shape[k].data() + 3, dst + 3 * k);
+    if (static_cast<py::ssize_t>(s.shape_W.size()) == r.nodes)
+      for (std::size_t k = 0; k < s.shape_W.size(); ++k) std::copy(s.shape_W[k].data(), s.shape_W[k].data() + 3, dst + 3 * k);
     else
       std::fill(dst, dst + 3 * r.nodes, kNaN);
   }
@@ -416,10 +418,10 @@ void bind_batch(py::module_& m) {
          const py::object& options, bool warm_start, bool shapes, const py::object& threads,
          const py::object& progress) {
         const Whiskers ws = whiskers_arg(whisker);
-        const Field fp = vector_field(points, "points");
-        if (!fp.present()) throw py::value_error("points must be given");
+        const Field fp = vector_field(points, "points_W");
+        if (!fp.present()) throw py::value_error("points_W must be given");
         const Field fh = scalar_field(arc_length_hint, "arc_length_hint");
-        const Field fd = vector_field(edge_direction, "edge_direction");
+        const Field fd = vector_field(edge_direction, "edge_direction_W");
         Poses poses{vector_field(pose_base, "pose_base"), vector_field(pose_angles, "pose_angles")};
         const Layout L = layout_of(ws, {&fp, &fh, &fd, &poses.base, &poses.angles});
         SolveOptions o = options_arg(options);
@@ -443,8 +445,8 @@ void bind_batch(py::module_& m) {
           return solve_point(w, poses.at(w, s, f), fp.vec(s, f), hint_at(s, f), o, nullptr, dir);
         });
       },
-      py::arg("whisker"), py::arg("points"), py::kw_only(), py::arg("arc_length_hint") = py::none(),
-      py::arg("edge_direction") = py::none(), py::arg("pose_base") = py::none(), py::arg("pose_angles") = py::none(),
+      py::arg("whisker"), py::arg("points_W"), py::kw_only(), py::arg("arc_length_hint") = py::none(),
+      py::arg("edge_direction_W") = py::none(), py::arg("pose_base") = py::none(), py::arg("pose_angles") = py::none(),
       py::arg("options") = py::none(), py::arg("warm_start") = true, py::arg("shapes") = false,
       py::arg("threads") = py::none(), py::arg("progress") = py::none());
 
@@ -455,11 +457,11 @@ void bind_batch(py::module_& m) {
          const py::object& pose_angles, const py::object& options, bool warm_start, bool shapes,
          const py::object& threads, const py::object& progress) {
         const Whiskers ws = whiskers_arg(whisker);
-        const Field fp = vector_field(edge_points, "edge_points");
-        if (!fp.present()) throw py::value_error("edge_points must be given");
-        const Field fd = vector_field(edge_directions, "edge_directions");
+        const Field fp = vector_field(edge_points, "edge_points_W");
+        if (!fp.present()) throw py::value_error("edge_points_W must be given");
+        const Field fd = vector_field(edge_directions, "edge_directions_W");
         const Field fh = scalar_field(arc_length_hint, "arc_length_hint");
-        const Field fa = vector_field(approach, "approach");
+        const Field fa = vector_field(approach, "approach_W");
         Poses poses{vector_field(pose_base, "pose_base"), vector_field(pose_angles, "pose_angles")};
         const Layout L = layout_of(ws, {&fp, &fd, &fh, &fa, &poses.base, &poses.angles});
         SolveOptions o = options_arg(options);
@@ -485,8 +487,8 @@ void bind_batch(py::module_& m) {
                             approach_at(s, f));
         });
       },
-      py::arg("whisker"), py::arg("edge_points"), py::arg("edge_directions") = py::none(), py::kw_only(),
-      py::arg("arc_length_hint") = py::none(), py::arg("approach") = py::none(), py::arg("pose_base") = py::none(),
+      py::arg("whisker"), py::arg("edge_points_W"), py::arg("edge_directions_W") = py::none(), py::kw_only(),
+      py::arg("arc_length_hint") = py::none(), py::arg("approach_W") = py::none(), py::arg("pose_base") = py::none(),
       py::arg("pose_angles") = py::none(), py::arg("options") = py::none(), py::arg("warm_start") = true,
       py::arg("shapes") = false, py::arg("threads") = py::none(), py::arg("progress") = py::none());
 
@@ -497,17 +499,17 @@ void bind_batch(py::module_& m) {
          const py::object& pose_angles, const py::object& options, bool shapes, const py::object& threads,
          const py::object& progress) {
         const Whiskers ws = whiskers_arg(whisker);
-        const Field fp = vector_field(edge_points, "edge_points");
-        if (!fp.present()) throw py::value_error("edge_points must be given");
-        const Field fd = vector_field(edge_directions, "edge_directions");
-        const Field fa = vector_field(approach, "approach");
-        // initial_contact: (3,) shared by every series, or (S, 3) one per series.
+        const Field fp = vector_field(edge_points, "edge_points_W");
+        if (!fp.present()) throw py::value_error("edge_points_W must be given");
+        const Field fd = vector_field(edge_directions, "edge_directions_W");
+        const Field fa = vector_field(approach, "approach_W");
+        // initial_contact_W: (3,) shared by every series, or (S, 3) one per series.
         DoubleArray q0;
         const bool has_q0 = !initial_contact.is_none();
         if (has_q0) {
-          q0 = as_double_array(initial_contact, "initial_contact");
+          q0 = as_double_array(initial_contact, "initial_contact_W");
           if (!((q0.ndim() == 1 && q0.shape(0) == 3) || (q0.ndim() == 2 && q0.shape(1) == 3)))
-            throw py::value_error("initial_contact must have shape (3,) or (S, 3), got " + shape_string(q0));
+            throw py::value_error("initial_contact_W must have shape (3,) or (S, 3), got " + shape_string(q0));
         }
         Poses poses{vector_field(pose_base, "pose_base"), vector_field(pose_angles, "pose_angles")};
         const Layout L = layout_of(ws, {&fp, &fd, &fa, &poses.base, &poses.angles});
@@ -515,7 +517,7 @@ void bind_batch(py::module_& m) {
         o.compute_shape = shapes;
         const py::ssize_t rows = has_q0 ? (q0.ndim() == 1 ? 1 : q0.shape(0)) : 0;
         if (has_q0 && rows != 1 && rows != L.series)
-          throw py::value_error("initial_contact has " + std::to_string(rows) + " rows but the batch has " +
+          throw py::value_error("initial_contact_W has " + std::to_string(rows) + " rows but the batch has " +
                                 std::to_string(L.series) + " series");
         TrackerOptions topt{ContactMode::frictional_edge, mu, o};
         validate(topt);
@@ -533,8 +535,8 @@ void bind_batch(py::module_& m) {
         return run_batch(L, ws, &tracking, shapes, threads, progress,
                          [](py::ssize_t, py::ssize_t) { return Solution{}; });
       },
-      py::arg("whisker"), py::arg("edge_points"), py::arg("edge_directions") = py::none(), py::arg("mu") = 0.0,
-      py::kw_only(), py::arg("initial_contact") = py::none(), py::arg("approach") = py::none(),
+      py::arg("whisker"), py::arg("edge_points_W"), py::arg("edge_directions_W") = py::none(), py::arg("mu") = 0.0,
+      py::kw_only(), py::arg("initial_contact_W") = py::none(), py::arg("approach_W") = py::none(),
       py::arg("pose_base") = py::none(), py::arg("pose_angles") = py::none(), py::arg("options") = py::none(),
       py::arg("shapes") = false, py::arg("threads") = py::none(), py::arg("progress") = py::none());
 

@@ -17,7 +17,8 @@ nlohmann::json parse(const std::string& text, const char* what) { return io::par
 
 /// Converts arrays of numbers in a JSON-derived Python dict to NumPy arrays (recursively).
 py::object arrays_in(const py::object& obj) {
-  static const char* vector_keys[] = {"contact_point", "force", "moment", "shape"};
+  static const char* vector_keys[] = {"contact_point_W", "force_W", "moment_W", "shape_W",
+                                      "contact_point",   "force",   "moment",   "shape"};
   if (!py::isinstance<py::dict>(obj)) return obj;
   py::dict d = obj.cast<py::dict>();
   py::dict out;
@@ -33,7 +34,7 @@ py::object arrays_in(const py::object& obj) {
     for (const char* k : vector_keys) is_vector = is_vector || key == k;
     if (is_vector && py::isinstance<py::list>(value)) {
       py::object a = np.attr("asarray")(value, py::arg("dtype") = "float64");
-      if (key == "shape") a = a.attr("reshape")(-1, 3);
+      if (key == "shape" || key == "shape_W") a = a.attr("reshape")(-1, 3);
       out[item.first] = a;
     } else {
       out[item.first] = value;

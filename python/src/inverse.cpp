@@ -11,6 +11,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "deprecated.hpp"
 #include "convert.hpp"
 #include "interruptible.hpp"
 #include "vibrissa/io/case_json.hpp"
@@ -83,8 +84,10 @@ void bind_inverse(py::module_& m) {
       .def_readonly("arc_length", &BaseWrenchRoot::arc_length, "s [m]")
       .def_readonly("force_magnitude", &BaseWrenchRoot::force_magnitude, "f [N]")
       .def_readonly("angle", &BaseWrenchRoot::angle, "zeta = atan2(F_z, F_y) of the loaded link [rad]")
-      .def_property_readonly("contact_point", [](const BaseWrenchRoot& r) { return to_array(r.contact_point); },
+      .def_property_readonly("contact_point_W", [](const BaseWrenchRoot& r) { return to_array(r.contact_point_W); },
                              "world [m]")
+      .def_property_readonly("contact_point", deprecated_alias("BaseWrenchRoot.contact_point", "contact_point_W"),
+                             "Deprecated alias of contact_point_W (DeprecationWarning; removed in 0.2.0).")
       .def_readonly("chi2", &BaseWrenchRoot::chi2, "whitened squared residual")
       .def_readonly("state", &BaseWrenchRoot::state, "the fitted unknowns (a LoadState)")
       .def("__repr__", [](const BaseWrenchRoot& r) {

@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "deprecated.hpp"
 #include "convert.hpp"
 #include "vibrissa/contact/contact_geometry.hpp"
 #include "vibrissa/solve/solvers.hpp"
@@ -134,6 +135,10 @@ void bind_solve(py::module_& m) {
                              "(Fx, Fy, Fz) [N], shape (3,).")
       .def_property_readonly("moment", [](const WhiskerFrameSignals& w) { return to_array(w.moment); },
                              "(Mx, My, Mz) [N·m], shape (3,).")
+      .def_property_readonly("Fx", [](const WhiskerFrameSignals& w) { return w.force.x(); },
+                             "Axial force, force[0] [N].")
+      .def_property_readonly("Mx", [](const WhiskerFrameSignals& w) { return w.moment.x(); },
+                             "Twisting moment about the whisker axis, moment[0] [N·m].")
       .def_readonly("FT", &WhiskerFrameSignals::FT, "Transverse force sqrt(Fy^2 + Fz^2) [N].")
       .def_readonly("MB", &WhiskerFrameSignals::MB, "Bending moment sqrt(My^2 + Mz^2) [N·m].")
       .def_readonly("FD", &WhiskerFrameSignals::FD, "Force direction atan2(Fz, Fy) [rad].")
@@ -158,20 +163,29 @@ void bind_solve(py::module_& m) {
       .def_readonly("force_magnitude", &Solution::force_magnitude, "|F| [N].")
       .def_readonly("arc_length", &Solution::arc_length, "Arc length of contact s [m].")
       .def_readonly("angle", &Solution::angle, "Direction of F about the loaded link's axis, atan2(Fz, Fy) [rad].")
-      .def_property_readonly("contact_point", [](const Solution& s) { return to_array(s.contact_point); },
+      .def_property_readonly("contact_point_W", [](const Solution& s) { return to_array(s.contact_point_W); },
                              "Contact point, world [m], shape (3,).")
-      .def_property_readonly("force", [](const Solution& s) { return to_array(s.force); },
+      .def_property_readonly("force_W", [](const Solution& s) { return to_array(s.force_W); },
                              "Force transmitted to the follicle (the contact force), world [N], shape (3,).")
-      .def_property_readonly("moment", [](const Solution& s) { return to_array(s.moment); },
+      .def_property_readonly("moment_W", [](const Solution& s) { return to_array(s.moment_W); },
                              "Moment of the contact force about the base, world [N·m], shape (3,).")
+      .def_property_readonly(
+          "contact_point", deprecated_alias("Solution.contact_point", "contact_point_W"),
+          "Deprecated alias of contact_point_W (DeprecationWarning; removed in 0.2.0).")
+      .def_property_readonly("force", deprecated_alias("Solution.force", "force_W"),
+                             "Deprecated alias of force_W (DeprecationWarning; removed in 0.2.0).")
+      .def_property_readonly("moment", deprecated_alias("Solution.moment", "moment_W"),
+                             "Deprecated alias of moment_W (DeprecationWarning; removed in 0.2.0).")
       .def_readonly("whisker_frame", &Solution::whisker_frame, "Base signals in the whisker frame (spec §2.4).")
       .def_readonly("normal_force", &Solution::normal_force, "Component of F normal to the edge [N] (edge modes) or None.")
       .def_readonly("edge_force", &Solution::edge_force, "Component of F along the edge [N] (edge modes) or None.")
       .def_readonly("residual", &Solution::residual, "Final residual [m].")
       .def_readonly("iterations", &Solution::iterations, "Solver iterations.")
+      .def_property_readonly("shape", deprecated_alias("Solution.shape", "shape_W"),
+                             "Deprecated alias of shape_W (DeprecationWarning; removed in 0.2.0).")
       .def_property_readonly(
-          "shape",
-          [](const Solution& s) { return to_array(s.shape); },
+          "shape_W",
+          [](const Solution& s) { return to_array(s.shape_W); },
           "Deflected nodes, world [m], shape (N+1, 3), base first; (0, 3) when options.compute_shape is False.")
       .def_readonly("other_root_arc_length", &Solution::other_root_arc_length,
                     "Arc length [m] of another root, when options.find_other_roots found one, else None.")

@@ -89,10 +89,10 @@ trial::SynthOptions synth_options_from_kwargs(const py::dict& kwargs) {
   return o;
 }
 
-/// The columns of frames.h5 (numeric: float64; status: str) by name, in file order.
+/// The columns of frames.h5 (numeric: float64; status: str, int8 codes in the file) by name, in file order.
 py::dict table_columns(const io::ResultTable& table) {
   py::dict out;
-  for (const auto& [name, values] : table.numeric) out[py::str(name)] = to_array(values);
+  for (const auto& c : table.numeric) out[py::str(c.name)] = to_array(c.values);
   py::module_ np = py::module_::import("numpy");
   for (const auto& [name, values] : table.text) out[py::str(name)] = np.attr("array")(py::cast(values), "U");
   return out;

@@ -83,7 +83,7 @@ def test_properties_accept_names_and_profiles():
 def test_force_mode_zero_force_leaves_rest_shape(whisker):
     s = vibrissa.solve_force(whisker, 0.0, 0.02)
     assert s.status == Status.converged and s.converged
-    np.testing.assert_allclose(s.shape, whisker.rest_nodes_W, atol=1e-15)
+    np.testing.assert_allclose(s.shape_W, whisker.rest_nodes_W, atol=1e-15)
 
 
 def test_force_mode_small_load_matches_beam_theory():
@@ -93,7 +93,7 @@ def test_force_mode_small_load_matches_beam_theory():
     F = 1e-6
     s = vibrissa.solve_force(w, F, w.length, angle=0.0)
     EI = 3.3e9 * math.pi * (100e-6) ** 4 / 4
-    assert s.shape[-1, 1] == pytest.approx(F * w.length**3 / (3 * EI), rel=1e-2)
+    assert s.shape_W[-1, 1] == pytest.approx(F * w.length**3 / (3 * EI), rel=1e-2)
     assert s.whisker_frame.MB == pytest.approx(F * w.length, rel=1e-6)
 
 
@@ -101,15 +101,15 @@ def test_point_mode_reaches_the_point_and_reports_spec_signals(whisker):
     target = np.array([0.02, 0.004, 0.001])
     s = vibrissa.solve_point(whisker, target)
     assert s.status == Status.converged, s.message
-    np.testing.assert_allclose(s.contact_point, target, atol=1e-11)
+    np.testing.assert_allclose(s.contact_point_W, target, atol=1e-11)
     wf = s.whisker_frame
     assert wf.FT == pytest.approx(math.hypot(wf.force[1], wf.force[2]), rel=1e-14)
     assert wf.MB == pytest.approx(math.hypot(wf.moment[1], wf.moment[2]), rel=1e-14)
     assert wf.FD == pytest.approx(math.atan2(wf.force[2], wf.force[1]), abs=1e-14)
-    assert np.linalg.norm(s.force) == pytest.approx(s.force_magnitude, rel=1e-12)
-    np.testing.assert_allclose(s.moment, np.cross(s.contact_point - whisker.p_W_base, s.force), rtol=1e-9, atol=1e-18)
+    assert np.linalg.norm(s.force_W) == pytest.approx(s.force_magnitude, rel=1e-12)
+    np.testing.assert_allclose(s.moment_W, np.cross(s.contact_point_W - whisker.p_W_base, s.force_W), rtol=1e-9, atol=1e-18)
     assert s.normal_force is None and s.edge_force is None
-    assert s.shape.shape == (101, 3)
+    assert s.shape_W.shape == (101, 3)
 
 
 def test_edge_mode_force_is_normal_to_the_edge(whisker):
@@ -117,8 +117,8 @@ def test_edge_mode_force_is_normal_to_the_edge(whisker):
     s = vibrissa.solve_edge(whisker, edge)
     assert s.status == Status.converged, s.message
     d = edge.direction / np.linalg.norm(edge.direction)
-    assert abs(np.dot(s.force, d)) < 1e-12 * s.force_magnitude + 1e-18
-    off = s.contact_point - edge.point
+    assert abs(np.dot(s.force_W, d)) < 1e-12 * s.force_magnitude + 1e-18
+    off = s.contact_point_W - edge.point
     assert np.linalg.norm(off - np.dot(off, d) * d) < 1e-10
     assert s.normal_force == pytest.approx(s.force_magnitude, rel=1e-9)
 
@@ -127,7 +127,7 @@ def test_out_of_reach_is_a_status_not_nan(whisker):
     s = vibrissa.solve_point(whisker, [0.5, 0.0, 0.0])
     assert s.status == Status.no_contact and not s.converged
     assert "beyond" in s.message
-    assert np.all(np.isfinite(s.contact_point))
+    assert np.all(np.isfinite(s.contact_point_W))
 
 
 def test_warm_start_accepts_state_or_solution(whisker):
@@ -152,12 +152,15 @@ def test_status_enum():
 
 def test_to_dict_uses_the_json_names(whisker):
     d = vibrissa.solve_point(whisker, [0.02, 0.004, 0.0]).to_dict()
-    for key in ("status", "message", "force_magnitude", "arc_length", "angle", "contact_point", "force", "moment",
-                "whisker_frame", "normal_force", "edge_force", "residual", "iterations", "shape"):
+    for key in ("status", "message", "force_magnitude", "arc_length", "angle", "contact_point_W", "force_W",
+                "moment_W", "whisker_frame", "normal_force", "edge_force", "residual", "iterations", "shape_W"):
         assert key in d
-    for key in ("force", "moment", "FT", "MB", "FD", "MD"):
+    for key in ("force", "moment", "Fx", "Mx", "FT", "MB", "FD", "MD"):
         assert key in d["whisker_frame"]
-    assert d["status"] == "converged" and d["contact_point"].shape == (3,) and d["shape"].shape == (101, 3)
+    assert d["status"] == "converged" and d["contact_point_W"].shape == (3,) and d["shape_W"].shape == (101, 3)
+    # The keys without _W are deprecated copies (removed in 0.2.0).
+    for old in ("contact_point", "force", "moment", "shape"):
+        np.testing.assert_array_equal(d[old], d[old + "_W"])
 
 
 @pytest.mark.parametrize("call, field", [
@@ -182,7 +185,7 @@ def test_invalid_input_raises_value_error_naming_the_field(whisker, call, field)
 def test_options_and_reprs(whisker):
     s = vibrissa.solve_point(whisker, [0.02, 0.004, 0.0], options=SolveOptions(compute_shape=False,
                                                                              find_other_roots=True))
-    assert s.shape.shape == (0, 3)
+    assert s.shape_W.shape == (0, 3)
     for obj in (s, s.whisker_frame, s.state, whisker, whisker.properties, Pose(), Edge([0, 0, 0]), SolveOptions()):
         assert type(obj).__name__ in repr(obj)
 

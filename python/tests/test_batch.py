@@ -7,7 +7,7 @@ import vibrissa
 from interrupting import interrupt
 from vibrissa import Edge, Pose, SolveOptions, Status, WhiskerProperties
 
-FIELDS = ("force_magnitude", "arc_length", "angle", "contact_point", "force", "moment", "residual")
+FIELDS = ("force_magnitude", "arc_length", "angle", "contact_point_W", "force_W", "moment_W", "residual")
 
 
 def assert_matches(batch, index, sol, tol=1e-12):
@@ -15,7 +15,7 @@ def assert_matches(batch, index, sol, tol=1e-12):
     assert batch.iterations[index] == sol.iterations
     for name in FIELDS:
         np.testing.assert_allclose(getattr(batch, name)[index], getattr(sol, name), rtol=tol, atol=0.0, err_msg=name)
-    for name in ("FT", "MB", "FD", "MD", "force", "moment"):
+    for name in ("Fx", "Mx", "FT", "MB", "FD", "MD", "force", "moment"):
         np.testing.assert_allclose(getattr(batch.whisker_frame, name)[index], getattr(sol.whisker_frame, name),
                                    rtol=tol, atol=0.0, err_msg=name)
     for name in ("normal_force", "edge_force"):
@@ -38,10 +38,10 @@ def loop_point(w, points, warm_start):
 @pytest.mark.parametrize("warm_start", [True, False])
 def test_point_batch_equals_loop(small_whisker, peg_track, warm_start):
     batch = vibrissa.solve_point_batch(small_whisker, peg_track, warm_start=warm_start, shapes=True)
-    assert batch.frames_shape == (12,) and batch.shape.shape == (12, 41, 3)
+    assert batch.frames_shape == (12,) and batch.shape_W.shape == (12, 41, 3)
     for i, s in enumerate(loop_point(small_whisker, peg_track, warm_start)):
         assert_matches(batch, i, s)
-        np.testing.assert_allclose(batch.shape[i], s.shape, rtol=1e-12, atol=1e-300)
+        np.testing.assert_allclose(batch.shape_W[i], s.shape_W, rtol=1e-12, atol=1e-300)
     assert batch.converged.all()
 
 
@@ -55,11 +55,11 @@ def test_thread_count_does_not_change_results(small_whisker, peg_track):
     series = np.stack([peg_track + [0.0, 1e-4 * k, 0.0] for k in range(6)])
     one = vibrissa.solve_point_batch(small_whisker, series, threads=1)
     two = vibrissa.solve_point_batch(small_whisker, series, threads=2)
-    for name in ("status", "force_magnitude", "contact_point", "state", "iterations"):
+    for name in ("status", "force_magnitude", "contact_point_W", "state", "iterations"):
         np.testing.assert_array_equal(getattr(one, name), getattr(two, name))
     cold1 = vibrissa.solve_point_batch(small_whisker, series, warm_start=False, threads=1)
     cold2 = vibrissa.solve_point_batch(small_whisker, series, warm_start=False, threads=3)
-    np.testing.assert_array_equal(cold1.force, cold2.force)
+    np.testing.assert_array_equal(cold1.force_W, cold2.force_W)
 
 
 def test_many_whiskers_and_series_axis(small_whisker, peg_track):
@@ -86,7 +86,7 @@ def test_edge_batch_equals_loop(small_whisker):
     points = np.column_stack([np.full(F, 0.018), np.linspace(0.003, 0.006, F), np.zeros(F)])
     direction = np.array([0.0, 0.1, 1.0], dtype=np.float32)  # (3,) shared, float32
     approach = [0.0, 1.0, 0.0]  # F · approach < 0 for these contacts (solve_edge docs)
-    batch = vibrissa.solve_edge_batch(small_whisker, points, direction, approach=approach)
+    batch = vibrissa.solve_edge_batch(small_whisker, points, direction, approach_W=approach)
     warm = None
     for i in range(F):
         s = vibrissa.solve_edge(small_whisker, Edge(points[i], direction.astype(np.float64)), warm=warm,
@@ -111,7 +111,7 @@ def test_frictional_edge_batch_equals_loop(small_whisker):
         if prev is None:
             prev = vibrissa.nearest_rest_point(small_whisker, edge)["on_edge_W"]
         s = vibrissa.solve_frictional_edge(small_whisker, edge, mu, prev, warm=warm)
-        prev = s.contact_point if s.converged else None
+        prev = s.contact_point_W if s.converged else None
         warm = s if s.converged else None
         assert_matches(batch, i, s)
     ok = batch.converged
@@ -126,7 +126,7 @@ def test_force_batch_equals_loop(small_whisker):
     for i in range(8):
         s = vibrissa.solve_force(small_whisker, forces[i], 0.015, angles[i])
         assert_matches(batch, i, s)
-        np.testing.assert_array_equal(batch.shape[i], s.shape)
+        np.testing.assert_array_equal(batch.shape_W[i], s.shape_W)
 
 
 def test_statuses_are_reported_per_frame(small_whisker):
@@ -137,13 +137,13 @@ def test_statuses_are_reported_per_frame(small_whisker):
 
 
 def test_batch_layout_errors_name_the_arguments(small_whisker, peg_track):
-    with pytest.raises(ValueError, match=r"arc_length_hint has 5 frames but points has 12"):
+    with pytest.raises(ValueError, match=r"arc_length_hint has 5 frames but points_W has 12"):
         vibrissa.solve_point_batch(small_whisker, peg_track, arc_length_hint=np.full(5, 0.02))
-    with pytest.raises(ValueError, match=r"points has 2 series but whisker has 3"):
+    with pytest.raises(ValueError, match=r"points_W has 2 series but whisker has 3"):
         vibrissa.solve_point_batch([small_whisker] * 3, np.stack([peg_track, peg_track]))
     with pytest.raises(ValueError, match=r"whisker\[1\] must be a vibrissa.Whisker"):
         vibrissa.solve_point_batch([small_whisker, 3], peg_track)
-    with pytest.raises(ValueError, match=r"edge_points must have shape"):
+    with pytest.raises(ValueError, match=r"edge_points_W must have shape"):
         vibrissa.solve_edge_batch(small_whisker, np.zeros((2, 2, 2, 3)))
     with pytest.raises(ValueError, match=r"threads must lie in \[1, 1024\], got 0"):
         vibrissa.solve_point_batch(small_whisker, peg_track, threads=0)
@@ -154,7 +154,7 @@ def test_batch_layout_errors_name_the_arguments(small_whisker, peg_track):
 def test_result_conveniences(small_whisker, peg_track):
     batch = vibrissa.solve_point_batch(small_whisker, peg_track)
     d = batch.to_dict()
-    assert set(d["whisker_frame"]) == {"force", "moment", "FT", "MB", "FD", "MD"}
+    assert set(d["whisker_frame"]) == {"force", "moment", "Fx", "Mx", "FT", "MB", "FD", "MD"}
     assert len(batch) == 12 and "12" in repr(batch)
     assert batch.state.shape == (12, 4) and batch.status.dtype == np.int32
 

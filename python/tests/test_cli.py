@@ -54,8 +54,8 @@ def test_python_round_trip_equals_cli(cli, tmp_path, name):
     d = solution.to_dict()
     assert d["status"] == cli_result["status"] == solution.status.label
     assert solution.force_magnitude == cli_result["force_magnitude"]
-    np.testing.assert_array_equal(solution.contact_point, cli_result["contact_point"])
-    np.testing.assert_array_equal(solution.shape, np.asarray(cli_result["shape"]).reshape(-1, 3))
+    np.testing.assert_array_equal(solution.contact_point_W, cli_result["contact_point_W"])
+    np.testing.assert_array_equal(solution.shape_W, np.asarray(cli_result["shape_W"]).reshape(-1, 3))
     assert solution.whisker_frame.FT == cli_result["whisker_frame"]["FT"]
 
 

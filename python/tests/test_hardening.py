@@ -9,7 +9,7 @@ import vibrissa
 
 def test_complex_arrays_are_refused_not_truncated(small_whisker):
     points = np.array([[0.02, 0.001, 0.0]], dtype=complex)
-    with pytest.raises(ValueError, match=r"points must be real, got complex values"):
+    with pytest.raises(ValueError, match=r"points_W must be real, got complex values"):
         vibrissa.solve_point_batch(small_whisker, points, warm_start=False)
 
 

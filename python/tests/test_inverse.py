@@ -18,19 +18,19 @@ def wrapped(a):
 def test_round_trip_with_pose(whisker, s, f, zeta):
     pose = vibrissa.Pose(base=[0.01, -0.02, 0.005], theta=0.5, phi=-0.3, zeta=1.1)
     fwd = vibrissa.solve_force(whisker, f, s, zeta, pose=pose)
-    inv = vibrissa.solve_base_wrench(whisker, fwd.force, fwd.moment, pose=pose)
+    inv = vibrissa.solve_base_wrench(whisker, fwd.force_W, fwd.moment_W, pose=pose)
     assert inv.solution.status == vibrissa.Status.converged
     assert inv.solution.arc_length == pytest.approx(s, rel=1e-9)
     assert inv.solution.force_magnitude == pytest.approx(f, rel=1e-9)
     assert abs(wrapped(inv.solution.angle - zeta)) < 1e-9
-    np.testing.assert_allclose(inv.solution.contact_point, fwd.contact_point, atol=1e-12)
+    np.testing.assert_allclose(inv.solution.contact_point_W, fwd.contact_point_W, atol=1e-12)
     assert inv.identifiability.identifiable and len(inv.roots) == 1
     assert inv.roots[0].arc_length == inv.solution.arc_length
 
 
 def test_bending_only_is_flagged_underdetermined(whisker):
     fwd = vibrissa.solve_force(whisker, 1e-4, 0.015, 0.4)
-    inv = vibrissa.solve_base_wrench(whisker, fwd.force, fwd.moment, signals=["My", "Mz"])
+    inv = vibrissa.solve_base_wrench(whisker, fwd.force_W, fwd.moment_W, signals=["My", "Mz"])
     assert inv.signals == "bending"
     assert not inv.identifiability.identifiable
     assert np.isinf(inv.identifiability.condition_number)
@@ -41,23 +41,23 @@ def test_bending_only_is_flagged_underdetermined(whisker):
 def test_noise_shapes_and_errors(whisker):
     fwd = vibrissa.solve_force(whisker, 1e-4, 0.015, 0.4)
     sd = [1e-6, 1e-6, 1e-6, 1e-8, 1e-8, 1e-8]
-    a = vibrissa.solve_base_wrench(whisker, fwd.force, fwd.moment, noise=sd)
-    b = vibrissa.solve_base_wrench(whisker, fwd.force, fwd.moment, noise=np.diag(np.square(sd)))
+    a = vibrissa.solve_base_wrench(whisker, fwd.force_W, fwd.moment_W, noise=sd)
+    b = vibrissa.solve_base_wrench(whisker, fwd.force_W, fwd.moment_W, noise=np.diag(np.square(sd)))
     np.testing.assert_allclose(a.identifiability.covariance, b.identifiability.covariance, rtol=1e-12)
     with pytest.raises(ValueError, match="noise"):
-        vibrissa.solve_base_wrench(whisker, fwd.force, fwd.moment, noise=[1e-6, 1e-6])
+        vibrissa.solve_base_wrench(whisker, fwd.force_W, fwd.moment_W, noise=[1e-6, 1e-6])
     with pytest.raises(ValueError, match="signals"):
-        vibrissa.solve_base_wrench(whisker, fwd.force, fwd.moment, signals="Fq")
+        vibrissa.solve_base_wrench(whisker, fwd.force_W, fwd.moment_W, signals="Fq")
     with pytest.raises(ValueError, match="force_W"):
-        vibrissa.solve_base_wrench(whisker, [1.0, 2.0], fwd.moment)
+        vibrissa.solve_base_wrench(whisker, [1.0, 2.0], fwd.moment_W)
 
 
 def test_batch_series_with_warm_starts_equals_single_solves(whisker):
     s = np.linspace(0.008, 0.02, 12)
     f = np.linspace(2e-5, 1e-4, 12)
     fwd = [vibrissa.solve_force(whisker, fk, sk, 0.5) for fk, sk in zip(f, s)]
-    F = np.array([r.force for r in fwd])
-    M = np.array([r.moment for r in fwd])
+    F = np.array([r.force_W for r in fwd])
+    M = np.array([r.moment_W for r in fwd])
     one = vibrissa.solve_base_wrench_batch(whisker, F, M)
     assert one.status.shape == (12,) and one.converged.all()
     np.testing.assert_allclose(one.arc_length, s, rtol=1e-9)
@@ -73,7 +73,7 @@ def test_batch_series_with_warm_starts_equals_single_solves(whisker):
 def test_cli_base_wrench_mode(cli, tmp_path, whisker):
     fwd = vibrissa.solve_force(whisker, 1e-4, 0.018, -0.7)
     case = {"whisker": {"length": 0.03, "curvature": 20.0},
-            "load": {"mode": "base_wrench", "force": fwd.force.tolist(), "moment": fwd.moment.tolist(),
+            "load": {"mode": "base_wrench", "force": fwd.force_W.tolist(), "moment": fwd.moment_W.tolist(),
                      "signals": "all", "noise": [1e-6, 1e-6, 1e-6, 1e-8, 1e-8, 1e-8]}}
     path = tmp_path / "case.json"
     path.write_text(json.dumps(case))

@@ -34,12 +34,12 @@ def test_non_contiguous_inputs(whisker):
 
 def test_outputs_are_float64_and_owned(whisker):
     s = vibrissa.solve_point(whisker, [0.02, 0.004, 0.0])
-    for a in (s.contact_point, s.force, s.moment, s.shape, s.whisker_frame.force, whisker.rest_nodes_B,
+    for a in (s.contact_point_W, s.force_W, s.moment_W, s.shape_W, s.whisker_frame.force, whisker.rest_nodes_B,
               whisker.R_WB, whisker.node_radii):
         assert a.dtype == np.float64 and a.flags["C_CONTIGUOUS"] and a.flags["OWNDATA"]
-    cp = s.contact_point
+    cp = s.contact_point_W
     cp[:] = 0.0  # a copy: the solution is unchanged
-    assert s.contact_point[0] == pytest.approx(0.02)
+    assert s.contact_point_W[0] == pytest.approx(0.02)
     assert isinstance(s.force_magnitude, float) and isinstance(s.iterations, int)
 
 
@@ -55,7 +55,7 @@ def test_outputs_are_float64_and_owned(whisker):
     (lambda w: WhiskerProperties(radii=np.ones((2, 2))), r"whisker.radii must be 1-D"),
     (lambda w: w.to_world(np.zeros((4, 2))), r"p_B must have shape \(3,\) or \(N, 3\), got \(4, 2\)"),
     (lambda w: vibrissa.solve_point(w, [0.02, 0.004, 0.0], warm=3), r"warm must be"),
-    (lambda w: vibrissa.solve_point_batch(w, np.zeros((5, 2))), r"points must have shape .*got \(5, 2\)"),
+    (lambda w: vibrissa.solve_point_batch(w, np.zeros((5, 2))), r"points_W must have shape .*got \(5, 2\)"),
 ])
 def test_wrong_shapes_raise_value_error(whisker, call, message):
     with pytest.raises(ValueError, match=message):

@@ -21,8 +21,14 @@ def run(cmd):
     return done.stdout
 
 
-def h5_datasets(path, group=None):
-    """Every dataset of an HDF5 file (or of one group) by path, as NumPy arrays (strings decoded)."""
+def attr_text(obj, name):
+    value = obj.attrs.get(name, "")
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def h5_datasets(path, group=None, decode_codes=False):
+    """Every dataset of an HDF5 file (or of one group) by path, as NumPy arrays (strings decoded; with
+    `decode_codes`, code datasets as their names through their `codes` table, as Python's tables give them)."""
     out = {}
     with h5py.File(path, "r") as f:
         root = f[group] if group else f
@@ -32,6 +38,9 @@ def h5_datasets(path, group=None):
                 value = obj[()]
                 if obj.dtype.kind in "SO":
                     value = np.array([v.decode() if isinstance(v, bytes) else v for v in value], dtype="U")
+                elif decode_codes and attr_text(obj, "units") == "code":
+                    table = dict(entry.split(" ", 1) for entry in attr_text(obj, "codes").split(", "))
+                    value = np.array([table[str(int(v))] for v in value], dtype="U")
                 out[name] = value
         root.visititems(visit)
     return out
@@ -94,7 +103,7 @@ def test_synth_and_trial_match_the_cli_bit_for_bit(cli, tmp_path, synthetic_tria
 
     run([cli, "trial", cli_trial, "--mu", "0.48", "--cutoff", "90", "--out", tmp_path / "cli_res", "--no-figures"])
     result = vibrissa.analyze_trial(str(cli_trial), mu=0.48, cutoff=90.0)
-    cli_columns = h5_datasets(tmp_path / "cli_res" / "frames.h5", "frames")
+    cli_columns = h5_datasets(tmp_path / "cli_res" / "frames.h5", "frames", decode_codes=True)
     assert_same_arrays(cli_columns, result.columns)
     cli_summary = json.loads((tmp_path / "cli_res" / "summary.json").read_text())
     assert without_wall_clock(result.summary) == without_wall_clock(cli_summary)
@@ -104,7 +113,7 @@ def test_synth_and_trial_match_the_cli_bit_for_bit(cli, tmp_path, synthetic_tria
     result.write(tmp_path / "py_res")
     for name in ("frames.csv",):
         assert (tmp_path / "py_res" / name).read_bytes() == (tmp_path / "cli_res" / name).read_bytes()
-    assert_same_arrays(cli_columns, h5_datasets(tmp_path / "py_res" / "frames.h5", "frames"))
+    assert_same_arrays(cli_columns, h5_datasets(tmp_path / "py_res" / "frames.h5", "frames", decode_codes=True))
     py_summary = json.loads((tmp_path / "py_res" / "summary.json").read_text())
     assert without_wall_clock(py_summary) == without_wall_clock(cli_summary)
 

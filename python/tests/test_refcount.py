@@ -26,10 +26,10 @@ def test_inputs_are_not_leaked(small_whisker, peg_track):
 def test_results_are_owned_once(small_whisker, peg_track):
     s = vibrissa.solve_point(small_whisker, [0.02, 0.004, 0.0])
     assert sys.getrefcount(s) == 2
-    cp = s.contact_point
+    cp = s.contact_point_W
     assert sys.getrefcount(cp) == 2
     batch = vibrissa.solve_point_batch(small_whisker, peg_track)
-    refs = sys.getrefcount(batch.force)  # outside `assert`: pytest's rewriting would hold one more
+    refs = sys.getrefcount(batch.force_W)  # outside `assert`: pytest's rewriting would hold one more
     assert refs == 2  # held by the result only (+1 for the call)
 
 
@@ -38,7 +38,7 @@ def test_no_growth_in_live_objects(small_whisker, peg_track):
         for _ in range(50):
             s = vibrissa.solve_point(small_whisker, [0.02, 0.004, 0.0])
             s.to_dict()
-            s.shape, s.whisker_frame.force
+            s.shape_W, s.whisker_frame.force
             vibrissa.solve_point_batch(small_whisker, peg_track).to_dict()
 
     run()

@@ -183,6 +183,10 @@ class WhiskerFrameSignals:
     @property
     def moment(self) -> Vec3: ...  # (Mx, My, Mz) [N·m]
     @property
+    def Fx(self) -> float: ...  # force[0] [N]
+    @property
+    def Mx(self) -> float: ...  # moment[0] [N·m]
+    @property
     def FT(self) -> float: ...
     @property
     def MB(self) -> float: ...
@@ -211,6 +215,15 @@ class Solution:
     @property
     def angle(self) -> float: ...  # [rad]
     @property
+    def contact_point_W(self) -> Vec3: ...  # world [m]
+    @property
+    def force_W(self) -> Vec3: ...  # world [N]
+    @property
+    def moment_W(self) -> Vec3: ...  # world [N·m]
+    @property
+    def shape_W(self) -> Rows3: ...  # (N+1, 3) world [m]
+    # Deprecated aliases of the _W names (DeprecationWarning; removed in 0.2.0).
+    @property
     def contact_point(self) -> Vec3: ...  # world [m]
     @property
     def force(self) -> Vec3: ...  # world [N]
@@ -227,7 +240,7 @@ class Solution:
     @property
     def iterations(self) -> int: ...
     @property
-    def shape(self) -> Rows3: ...  # (N+1, 3) world [m]
+    def shape(self) -> Rows3: ...  # deprecated alias of shape_W
     @property
     def other_root_arc_length(self) -> Optional[float]: ...
     @property
@@ -275,19 +288,19 @@ def solve_force_batch(whisker: WhiskerArg, force: ArrayLike, arc_length: ArrayLi
                       pose_angles: Optional[ArrayLike] = None, options: Optional[SolveOptions] = None,
                       shapes: bool = False, threads: Optional[int] = None,
                       progress: Optional[Progress] = None) -> dict[str, Any]: ...
-def solve_point_batch(whisker: WhiskerArg, points: ArrayLike, *, arc_length_hint: Optional[ArrayLike] = None,
-                      edge_direction: Optional[ArrayLike] = None, pose_base: Optional[ArrayLike] = None,
+def solve_point_batch(whisker: WhiskerArg, points_W: ArrayLike, *, arc_length_hint: Optional[ArrayLike] = None,
+                      edge_direction_W: Optional[ArrayLike] = None, pose_base: Optional[ArrayLike] = None,
                       pose_angles: Optional[ArrayLike] = None, options: Optional[SolveOptions] = None,
                       warm_start: bool = True, shapes: bool = False, threads: Optional[int] = None,
                       progress: Optional[Progress] = None) -> dict[str, Any]: ...
-def solve_edge_batch(whisker: WhiskerArg, edge_points: ArrayLike, edge_directions: Optional[ArrayLike] = None, *,
-                     arc_length_hint: Optional[ArrayLike] = None, approach: Optional[ArrayLike] = None,
+def solve_edge_batch(whisker: WhiskerArg, edge_points_W: ArrayLike, edge_directions_W: Optional[ArrayLike] = None,
+                     *, arc_length_hint: Optional[ArrayLike] = None, approach_W: Optional[ArrayLike] = None,
                      pose_base: Optional[ArrayLike] = None, pose_angles: Optional[ArrayLike] = None,
                      options: Optional[SolveOptions] = None, warm_start: bool = True, shapes: bool = False,
                      threads: Optional[int] = None, progress: Optional[Progress] = None) -> dict[str, Any]: ...
-def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points: ArrayLike,
-                                edge_directions: Optional[ArrayLike] = None, mu: float = 0.0, *,
-                                initial_contact: Optional[ArrayLike] = None, approach: Optional[ArrayLike] = None,
+def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points_W: ArrayLike,
+                                edge_directions_W: Optional[ArrayLike] = None, mu: float = 0.0, *,
+                                initial_contact_W: Optional[ArrayLike] = None, approach_W: Optional[ArrayLike] = None,
                                 pose_base: Optional[ArrayLike] = None, pose_angles: Optional[ArrayLike] = None,
                                 options: Optional[SolveOptions] = None, shapes: bool = False,
                                 threads: Optional[int] = None, progress: Optional[Progress] = None) -> dict[str, Any]: ...
@@ -400,7 +413,9 @@ class BaseWrenchRoot:
     @property
     def angle(self) -> float: ...
     @property
-    def contact_point(self) -> Vec3: ...
+    def contact_point_W(self) -> Vec3: ...  # world [m]
+    @property
+    def contact_point(self) -> Vec3: ...  # deprecated alias of contact_point_W (removed in 0.2.0)
     @property
     def chi2(self) -> float: ...
     @property

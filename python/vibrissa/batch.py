@@ -22,6 +22,7 @@ about every 50 ms, and Ctrl-C raises ``KeyboardInterrupt`` within 0.5 s.
 
 from __future__ import annotations
 
+import warnings
 from typing import Any, Optional, Sequence, Union
 
 import numpy as np
@@ -32,12 +33,37 @@ from ._vibrissa import Status
 #: Status names indexed by the integer codes in :attr:`BatchResult.status`.
 STATUS_NAMES = tuple(s.label for s in sorted(Status.__members__.values(), key=int))
 
+#: The release that removes the deprecated names (docs/python.md, "Deprecated names").
+DEPRECATED_NAMES_REMOVED_IN = "0.2.0"
+
+_UNSET = object()
+
+
+def _warn_deprecated(old: str, new: str) -> None:
+    warnings.warn(f"{old} is deprecated and will be removed in vibrissa {DEPRECATED_NAMES_REMOVED_IN}; use {new}",
+                  DeprecationWarning, stacklevel=3)
+
+
+def _renamed_args(function: str, given: dict, legacy: dict, renames: dict) -> dict:
+    """Moves deprecated keyword arguments (``renames``: old name -> new name) from ``legacy`` into ``given``
+    with a DeprecationWarning; TypeError for an unknown keyword or a value passed under both names."""
+    for old, value in legacy.items():
+        new = renames.get(old)
+        if new is None:
+            raise TypeError(f"{function}() got an unexpected keyword argument '{old}'")
+        if given.get(new, _UNSET) is not _UNSET:
+            raise TypeError(f"{function}() got '{old}' and its new name '{new}'; pass only '{new}'")
+        _warn_deprecated(f"{function}({old}=...)", f"{new}=")
+        given[new] = value
+    return {k: (None if v is _UNSET else v) for k, v in given.items()}
+
 
 class BatchWhiskerFrame:
     """Stacked base signals in the whisker frame (spec §2.4): ``force`` (..., 3) [N], ``moment`` (..., 3)
-    [N·m], ``FT``, ``MB`` [N, N·m], ``FD``, ``MD`` [rad]."""
+    [N·m], ``Fx`` = ``force[..., 0]`` [N], ``Mx`` = ``moment[..., 0]`` [N·m], ``FT``, ``MB`` [N, N·m], ``FD``,
+    ``MD`` [rad]."""
 
-    __slots__ = ("force", "moment", "FT", "MB", "FD", "MD")
+    __slots__ = ("force", "moment", "Fx", "Mx", "FT", "MB", "FD", "MD")
 
     def __init__(self, d: dict):
         for k in self.__slots__:
@@ -54,20 +80,47 @@ class BatchResult:
 
     * ``status`` (L) int32 codes of :class:`Status` (``STATUS_NAMES[code]`` is the name), ``converged`` (L) bool
     * ``force_magnitude`` [N], ``arc_length`` [m], ``angle`` [rad], ``residual`` [m], ``iterations`` (L)
-    * ``contact_point`` [m], ``force`` [N], ``moment`` [N·m]: (L, 3), world frame
-    * ``whisker_frame``: ``force``, ``moment`` (L, 3) and ``FT``, ``MB``, ``FD``, ``MD`` (L)
+    * ``contact_point_W`` [m], ``force_W`` [N], ``moment_W`` [N·m]: (L, 3), world frame
+    * ``whisker_frame``: ``force``, ``moment`` (L, 3) and ``Fx``, ``Mx``, ``FT``, ``MB``, ``FD``, ``MD`` (L)
     * ``normal_force``, ``edge_force`` [N] (L): NaN where the mode does not define them
     * ``state`` (L, 4): ``(force_x, force_y, force_z, arc_length)``, the warm-start unknowns
-    * ``shape`` (L, N+1, 3) world [m] when the batch was called with ``shapes=True``, else None
+    * ``shape_W`` (L, N+1, 3) world [m] when the batch was called with ``shapes=True``, else None
+
+    ``contact_point``, ``force``, ``moment`` and ``shape`` are deprecated aliases of the ``_W`` names (they
+    emit a DeprecationWarning and are removed in 0.2.0).
     """
 
-    __slots__ = ("status", "force_magnitude", "arc_length", "angle", "contact_point", "force", "moment",
-                 "whisker_frame", "normal_force", "edge_force", "residual", "iterations", "state", "shape")
+    __slots__ = ("status", "force_magnitude", "arc_length", "angle", "contact_point_W", "force_W", "moment_W",
+                 "whisker_frame", "normal_force", "edge_force", "residual", "iterations", "state", "shape_W")
 
     def __init__(self, d: dict):
         for k in self.__slots__:
             v = d[k]
             setattr(self, k, BatchWhiskerFrame(v) if k == "whisker_frame" else v)
+
+    @property
+    def contact_point(self) -> np.ndarray:
+        """Deprecated alias of ``contact_point_W`` (removed in 0.2.0)."""
+        _warn_deprecated("BatchResult.contact_point", "contact_point_W")
+        return self.contact_point_W
+
+    @property
+    def force(self) -> np.ndarray:
+        """Deprecated alias of ``force_W`` (removed in 0.2.0)."""
+        _warn_deprecated("BatchResult.force", "force_W")
+        return self.force_W
+
+    @property
+    def moment(self) -> np.ndarray:
+        """Deprecated alias of ``moment_W`` (removed in 0.2.0)."""
+        _warn_deprecated("BatchResult.moment", "moment_W")
+        return self.moment_W
+
+    @property
+    def shape(self) -> Optional[np.ndarray]:
+        """Deprecated alias of ``shape_W`` (removed in 0.2.0)."""
+        _warn_deprecated("BatchResult.shape", "shape_W")
+        return self.shape_W
 
     @property
     def converged(self) -> np.ndarray:
@@ -116,44 +169,61 @@ def solve_force_batch(whisker: WhiskerArg, force: Any, arc_length: Any, angle: A
         shapes=shapes, threads=threads, progress=progress))
 
 
-def solve_point_batch(whisker: WhiskerArg, points: Any, *, arc_length_hint: Any = None,
-                      edge_direction: Any = None, pose_base: Any = None, pose_angles: Any = None,
+def solve_point_batch(whisker: WhiskerArg, points_W: Any = _UNSET, *, arc_length_hint: Any = None,
+                      edge_direction_W: Any = _UNSET, pose_base: Any = None, pose_angles: Any = None,
                       options: Optional[_vibrissa.SolveOptions] = None, warm_start: bool = True,
-                      shapes: bool = False, threads: Optional[int] = None, progress: Any = None) -> BatchResult:
-    """Contact-point mode for many frames (see :func:`solve_point`): ``points`` (F, 3) or (S, F, 3) world
-    [m]. ``arc_length_hint`` [m] (number, (F,) or (S, F)); ``edge_direction`` ((3,), (F, 3) ...) splits the
-    force into normal_force / edge_force. With ``warm_start`` each frame starts from the previous one."""
+                      shapes: bool = False, threads: Optional[int] = None, progress: Any = None,
+                      **deprecated: Any) -> BatchResult:
+    """Contact-point mode for many frames (see :func:`solve_point`): ``points_W`` (F, 3) or (S, F, 3) world
+    [m]. ``arc_length_hint`` [m] (number, (F,) or (S, F)); ``edge_direction_W`` ((3,), (F, 3) ...) splits the
+    force into normal_force / edge_force. With ``warm_start`` each frame starts from the previous one.
+    The keywords ``points`` and ``edge_direction`` are deprecated aliases (removed in 0.2.0)."""
+    a = _renamed_args("solve_point_batch", {"points_W": points_W, "edge_direction_W": edge_direction_W},
+                      deprecated, {"points": "points_W", "edge_direction": "edge_direction_W"})
     return BatchResult(_vibrissa.solve_point_batch(
-        whisker, points, arc_length_hint=arc_length_hint, edge_direction=edge_direction, pose_base=pose_base,
-        pose_angles=pose_angles, options=options, warm_start=warm_start, shapes=shapes, threads=threads,
-        progress=progress))
-
-
-def solve_edge_batch(whisker: WhiskerArg, edge_points: Any, edge_directions: Any = None, *,
-                     arc_length_hint: Any = None, approach: Any = None, pose_base: Any = None,
-                     pose_angles: Any = None, options: Optional[_vibrissa.SolveOptions] = None,
-                     warm_start: bool = True, shapes: bool = False, threads: Optional[int] = None,
-                     progress: Any = None) -> BatchResult:
-    """Edge mode (frictionless) for many frames (see :func:`solve_edge`): the edge of frame f passes through
-    ``edge_points[f]`` [m] along ``edge_directions[f]`` (default world +z; (3,) for a fixed direction).
-    ``approach`` gives the direction the whisker moves into the edge (else no_contact)."""
-    return BatchResult(_vibrissa.solve_edge_batch(
-        whisker, edge_points, edge_directions, arc_length_hint=arc_length_hint, approach=approach,
+        whisker, a["points_W"], arc_length_hint=arc_length_hint, edge_direction_W=a["edge_direction_W"],
         pose_base=pose_base, pose_angles=pose_angles, options=options, warm_start=warm_start, shapes=shapes,
         threads=threads, progress=progress))
 
 
-def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points: Any, edge_directions: Any = None,
-                                mu: float = 0.0, *, initial_contact: Any = None, approach: Any = None,
+def solve_edge_batch(whisker: WhiskerArg, edge_points_W: Any = _UNSET, edge_directions_W: Any = _UNSET, *,
+                     arc_length_hint: Any = None, approach_W: Any = _UNSET, pose_base: Any = None,
+                     pose_angles: Any = None, options: Optional[_vibrissa.SolveOptions] = None,
+                     warm_start: bool = True, shapes: bool = False, threads: Optional[int] = None,
+                     progress: Any = None, **deprecated: Any) -> BatchResult:
+    """Edge mode (frictionless) for many frames (see :func:`solve_edge`): the edge of frame f passes through
+    ``edge_points_W[f]`` [m] along ``edge_directions_W[f]`` (default world +z; (3,) for a fixed direction).
+    ``approach_W`` gives the direction the whisker moves into the edge (else no_contact). The keywords
+    ``edge_points``, ``edge_directions`` and ``approach`` are deprecated aliases (removed in 0.2.0)."""
+    a = _renamed_args("solve_edge_batch", {"edge_points_W": edge_points_W, "edge_directions_W": edge_directions_W,
+                                           "approach_W": approach_W},
+                      deprecated, {"edge_points": "edge_points_W", "edge_directions": "edge_directions_W",
+                                   "approach": "approach_W"})
+    return BatchResult(_vibrissa.solve_edge_batch(
+        whisker, a["edge_points_W"], a["edge_directions_W"], arc_length_hint=arc_length_hint,
+        approach_W=a["approach_W"], pose_base=pose_base, pose_angles=pose_angles, options=options,
+        warm_start=warm_start, shapes=shapes, threads=threads, progress=progress))
+
+
+def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points_W: Any = _UNSET, edge_directions_W: Any = _UNSET,
+                                mu: float = 0.0, *, initial_contact_W: Any = _UNSET, approach_W: Any = _UNSET,
                                 pose_base: Any = None, pose_angles: Any = None,
                                 options: Optional[_vibrissa.SolveOptions] = None, shapes: bool = False,
-                                threads: Optional[int] = None, progress: Any = None) -> BatchResult:
+                                threads: Optional[int] = None, progress: Any = None,
+                                **deprecated: Any) -> BatchResult:
     """Frictional edge mode (Coulomb ``mu``) along time series (see :func:`solve_frictional_edge`).
 
     The contact history runs through each series in order: frame f starts from frame f-1's contact point and
     solution. The first touch (and any touch after contact was lost) starts at the frictionless contact,
-    unless ``initial_contact`` ((3,) or (S, 3), world [m]) gives the first frame's previous contact."""
+    unless ``initial_contact_W`` ((3,) or (S, 3), world [m]) gives the first frame's previous contact. The
+    keywords ``edge_points``, ``edge_directions``, ``initial_contact`` and ``approach`` are deprecated
+    aliases (removed in 0.2.0)."""
+    a = _renamed_args("solve_frictional_edge_batch",
+                      {"edge_points_W": edge_points_W, "edge_directions_W": edge_directions_W,
+                       "initial_contact_W": initial_contact_W, "approach_W": approach_W},
+                      deprecated, {"edge_points": "edge_points_W", "edge_directions": "edge_directions_W",
+                                   "initial_contact": "initial_contact_W", "approach": "approach_W"})
     return BatchResult(_vibrissa.solve_frictional_edge_batch(
-        whisker, edge_points, edge_directions, mu, initial_contact=initial_contact, approach=approach,
-        pose_base=pose_base, pose_angles=pose_angles, options=options, shapes=shapes, threads=threads,
-        progress=progress))
+        whisker, a["edge_points_W"], a["edge_directions_W"], mu, initial_contact_W=a["initial_contact_W"],
+        approach_W=a["approach_W"], pose_base=pose_base, pose_angles=pose_angles, options=options,
+        shapes=shapes, threads=threads, progress=progress))

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _vibrissa
+from .batch import _warn_deprecated
 
 __all__ = ["BaseWrenchBatch", "solve_base_wrench_batch"]
 
@@ -15,7 +16,7 @@ class BaseWrenchBatch:
 
     * ``status`` int32 codes of :class:`Status` (``STATUS_NAMES[code]``), ``converged`` bool
     * ``arc_length`` [m], ``force_magnitude`` [N], ``angle`` [rad], ``chi2``
-    * ``contact_point`` (..., 3) world [m]
+    * ``contact_point_W`` (..., 3) world [m] (``contact_point``: deprecated alias, removed in 0.2.0)
     * ``identifiable`` bool, ``condition_number``, ``covariance`` (..., 3, 3) of (s, f, zeta),
       ``contact_point_covariance`` (..., 3, 3) [m^2]
     * ``results``: the :class:`BaseWrenchResult` objects, nested like the frames (roots and all)
@@ -35,11 +36,17 @@ class BaseWrenchBatch:
         self.force_magnitude = stack(lambda r: r.solution.force_magnitude)
         self.angle = stack(lambda r: r.solution.angle)
         self.chi2 = stack(lambda r: r.chi2)
-        self.contact_point = stack(lambda r: r.solution.contact_point, (3,))
+        self.contact_point_W = stack(lambda r: r.solution.contact_point_W, (3,))
         self.identifiable = np.array([r.identifiability.identifiable for r in rows], dtype=bool).reshape(shape)
         self.condition_number = stack(lambda r: r.identifiability.condition_number)
         self.covariance = stack(lambda r: r.identifiability.covariance, (3, 3))
         self.contact_point_covariance = stack(lambda r: r.identifiability.contact_point_covariance, (3, 3))
+
+    @property
+    def contact_point(self) -> np.ndarray:
+        """Deprecated alias of ``contact_point_W`` (removed in 0.2.0)."""
+        _warn_deprecated("BaseWrenchBatch.contact_point", "contact_point_W")
+        return self.contact_point_W
 
     def __repr__(self) -> str:
         return f"BaseWrenchBatch(shape={self.status.shape}, converged={int(self.converged.sum())})"

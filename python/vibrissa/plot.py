@@ -26,13 +26,13 @@ def plot_solution(solution: Solution, whisker: Optional[Whisker] = None, *, ax: 
     if whisker is not None:
         rest = whisker.rest_nodes_W * scale
         ax.plot(rest[:, i], rest[:, j], color="0.6", linestyle="--", label="rest")
-    if solution.shape.shape[0]:
-        shape = solution.shape * scale
+    if solution.shape_W.shape[0]:
+        shape = solution.shape_W * scale
         ax.plot(shape[:, i], shape[:, j], color="C0", label="deflected")
-    c = solution.contact_point * scale
+    c = solution.contact_point_W * scale
     ax.plot([c[i]], [c[j]], "o", color="C3", label="contact")
     if show_force and solution.force_magnitude > 0.0:
-        f = solution.force / solution.force_magnitude
+        f = solution.force_W / solution.force_magnitude
         length = 0.15 * (whisker.length if whisker is not None else solution.arc_length) * scale
         ax.annotate("", xy=(c[i] + length * f[i], c[j] + length * f[j]), xytext=(c[i], c[j]),
                     arrowprops={"arrowstyle": "->", "color": "C3"})

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -13,6 +14,9 @@
 #include "vibrissa/core/checks.hpp"
 
 namespace vibrissa::array {
+
+/// A value that does not exist (the contact point of a free frame): NaN in HDF5, an empty CSV cell.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 [[noreturn]] inline void fail(const std::string& what) { throw std::invalid_argument(what); }
 

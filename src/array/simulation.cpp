@@ -76,9 +76,9 @@ class PairRun {
  private:
   void record(std::size_t k, const TrackedFrame& fr) {
     const Solution& s = fr.solution;
-    put3(r_.contact_W, k, s.contact_point);
-    put3(r_.force_W, k, s.force);
-    put3(r_.moment_W, k, s.moment);
+    put3(r_.contact_W, k, s.contact_point_W);
+    put3(r_.force_W, k, s.force_W);
+    put3(r_.moment_W, k, s.moment_W);
     put3(r_.force_B, k, s.whisker_frame.force);
     put3(r_.moment_B, k, s.whisker_frame.moment);
     r_.s_applied[k] = s.arc_length;
@@ -229,9 +229,11 @@ ArrayResult simulate_array(const SimulationConfig& c, const RunControl& control)
   r.state.assign(total, 0);
   r.solver_status.assign(total, -1);
   r.edge.assign(total, -1);
-  for (auto* v : {&r.s_applied, &r.FT, &r.MB, &r.FD, &r.MD, &r.normal_force, &r.edge_force, &r.z_edge, &r.z_error})
-    v->assign(total, 0.0);
-  for (auto* v : {&r.contact_W, &r.force_W, &r.moment_W, &r.force_B, &r.moment_B, &r.base_W}) v->assign(3 * total, 0.0);
+  // Without contact the loads are zero, and the contact's position and direction do not exist (NaN).
+  for (auto* v : {&r.FT, &r.MB, &r.normal_force, &r.edge_force}) v->assign(total, 0.0);
+  for (auto* v : {&r.s_applied, &r.FD, &r.MD, &r.z_edge, &r.z_error}) v->assign(total, kNaN);
+  for (auto* v : {&r.force_W, &r.moment_W, &r.force_B, &r.moment_B, &r.base_W}) v->assign(3 * total, 0.0);
+  r.contact_W.assign(3 * total, kNaN);
   for (auto* v : {&r.theta, &r.phi, &r.zeta}) v->assign(r.n_whiskers * r.n_frames, 0.0);
   r.render_frames = c.render_frames;
   const std::size_t shape_size = c.render_frames.size() * r.n_whiskers * r.n_nodes * 3;

@@ -82,9 +82,9 @@ void ContactTracker::record_converged(const EdgeSegment* e) {
   const Solution& s = frame_.solution;
   warm_ = s.state;
   hint_ = s.arc_length;
-  friction_start_W_ = s.contact_point;
+  friction_start_W_ = s.contact_point_W;
   if (e) {
-    frame_.edge_coordinate = e->coordinate(s.contact_point);
+    frame_.edge_coordinate = e->coordinate(s.contact_point_W);
     if (std::isnan(onset_coordinate_)) onset_coordinate_ = frame_.edge_coordinate;
   }
   frame_.onset_edge_coordinate = onset_coordinate_;
@@ -160,7 +160,7 @@ const TrackedFrame& ContactTracker::step(const Placement& X, std::span<const Edg
     Solution& s = frame_.solution;
     switch (s.status) {
       case Status::converged:
-        if (e.contains(e.coordinate(s.contact_point))) {
+        if (e.contains(e.coordinate(s.contact_point_W))) {
           record_converged(&e);
         } else {
           frame_.state = ContactState::pushed_past;  // slid off the end of a finite edge

@@ -1,10 +1,12 @@
 #include "vibrissa/io/array_outputs.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <ostream>
 #include <stdexcept>
 
 #include "../array/array_util.hpp"  // the array layer's unit helpers
+#include "code_tables.hpp"
 #include "h5_file.hpp"
 #include "vibrissa/array/sweep.hpp"
 #include "vibrissa/io/figure_files.hpp"
@@ -24,15 +26,15 @@ void create_array_h5(const ArrayResult& r, const SimulationConfig& c, const std:
   const hsize_t P = r.n_pitches, W = r.n_whiskers, F = r.n_frames;
   const std::vector<hsize_t> pwf{P, W, F}, pwf3{P, W, F, 3}, wf{W, F};
   // Every dataset is compressed when large (most frames hold zeros); `units` names its unit.
-  const auto in = [](const char* units) { return h5::DatasetOptions{units, true}; };
+  const auto in = [](const char* units) { return h5::DatasetOptions(units, true); };
   h5::write_string_attribute(root, "layout", "[pitch][whisker][frame]");
   h5::write_string_attribute(root, "morphology", c.morphology.source);
   h5::write_string_attribute(root, "mode", std::string(to_string(c.mode)));
   h5::write_double_attribute(root, "mu", c.mu);
   h5::write_string_attribute(root, "slopes", std::string(to_string(c.whisking.slopes)));
-  h5::write_string_attribute(root, "state_codes", "0 free, 1 contact, 2 pushed_past");
-  h5::write_string_attribute(root, "solver_status_codes",
-                             "-1 no solve, 0 converged, 1 no_contact, 2 slipped_off, 3 not_converged");
+  // The code tables also stay root attributes, as files before the "codes" dataset attribute had them.
+  h5::write_string_attribute(root, "state_codes", contact_state_code_table());
+  h5::write_string_attribute(root, "solver_status_codes", status_code_table());
   h5::write_dataset(root, "time", r.times, {F}, in("s"));
   h5::write_dataset(root, "pitch", r.pitches, {P}, in("rad"));
   h5::write_fixed_strings(root, "whisker", r.labels);
@@ -42,12 +44,13 @@ void create_array_h5(const ArrayResult& r, const SimulationConfig& c, const std:
     row.push_back(static_cast<std::int8_t>(s.row));
     column.push_back(static_cast<std::int8_t>(s.column));
   }
-  h5::write_dataset(root, "side", side, {W}, in("+1 right, -1 left"));
-  h5::write_dataset(root, "row", row, {W}, in("1..5 = A..E"));
-  h5::write_dataset(root, "column", column, {W}, in(""));
-  h5::write_dataset(root, "state", r.state, pwf, in(""));
-  h5::write_dataset(root, "solver_status", r.solver_status, pwf, in(""));
-  h5::write_dataset(root, "edge_index", r.edge, pwf, in(""));
+  const auto coded = [](std::string table) { return h5::DatasetOptions("code", true, std::move(table)); };
+  h5::write_dataset(root, "side", side, {W}, coded("1 right, -1 left"));
+  h5::write_dataset(root, "row", row, {W}, coded("1 A, 2 B, 3 C, 4 D, 5 E"));
+  h5::write_dataset(root, "column", column, {W}, in("1"));
+  h5::write_dataset(root, "state", r.state, pwf, coded(contact_state_code_table()));
+  h5::write_dataset(root, "solver_status", r.solver_status, pwf, coded(status_code_table()));
+  h5::write_dataset(root, "edge_index", r.edge, pwf, in("1"));
   h5::write_dataset(root, "s_applied", r.s_applied, pwf, in("m"));
   h5::write_dataset(root, "contact_point_W", r.contact_W, pwf3, in("m"));
   h5::write_dataset(root, "force_W", r.force_W, pwf3, in("N"));
@@ -70,7 +73,7 @@ void create_array_h5(const ArrayResult& r, const SimulationConfig& c, const std:
     const h5::Handle render = h5::create_group(root, "render");
     const hsize_t R = r.render_frames.size(), N = r.n_nodes;
     h5::write_double_attribute(render.get(), "pitch_index", static_cast<double>(c.render_pitch));
-    h5::write_dataset(render.get(), "frame", r.render_frames, {R}, in(""));
+    h5::write_dataset(render.get(), "frame", r.render_frames, {R}, in("1"));
     h5::write_dataset(render.get(), "rest", r.rest_shapes, {R, W, N, 3}, in("m"));
     h5::write_dataset(render.get(), "deflected", r.deflected_shapes, {R, W, N, 3}, in("m"));
     h5::write_dataset(render.get(), "edges", r.render_edges, {R, r.n_edges, 2, 3}, in("m"));
@@ -91,15 +94,23 @@ void create_array_csv(const ArrayResult& r, const std::string& path) {
       for (std::size_t fr = 0; fr < r.n_frames; ++fr) {
         const std::size_t k = r.index(p, w, fr);
         const auto v = [&](const std::vector<double>& a, int i) { return a[3 * k + static_cast<std::size_t>(i)]; };
-        std::fprintf(f, "%.6g,%s,%zu,%.9g,%s,%d,%.9g,%.9g,%.9g,%.9g", to_deg(r.pitches[p]), r.labels[w].c_str(), fr,
-                     r.times[fr], std::string(to_string(static_cast<ContactState>(r.state[k]))).c_str(), r.edge[k],
-                     r.s_applied[k] * 1e3, v(r.contact_W, 0) * 1e3, v(r.contact_W, 1) * 1e3, v(r.contact_W, 2) * 1e3);
+        // ",value", or "," alone where the value does not exist (NaN).
+        const auto cell = [f](double x) {
+          if (std::isnan(x)) std::fputc(',', f);
+          else std::fprintf(f, ",%.9g", x);
+        };
+        std::fprintf(f, "%.6g,%s,%zu,%.9g,%s,%d", to_deg(r.pitches[p]), r.labels[w].c_str(), fr, r.times[fr],
+                     std::string(to_string(static_cast<ContactState>(r.state[k]))).c_str(), r.edge[k]);
+        cell(r.s_applied[k] * 1e3);
+        for (int i = 0; i < 3; ++i) cell(v(r.contact_W, i) * 1e3);
         for (const auto* a : {&r.force_W, &r.moment_W, &r.force_B, &r.moment_B}) {
           const double unit = (a == &r.force_W || a == &r.force_B) ? 1e3 : 1e6;
-          for (int i = 0; i < 3; ++i) std::fprintf(f, ",%.9g", v(*a, i) * unit);
+          for (int i = 0; i < 3; ++i) cell(v(*a, i) * unit);
         }
-        std::fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", r.FT[k] * 1e3, r.MB[k] * 1e6, to_deg(r.FD[k]),
-                     to_deg(r.MD[k]), r.normal_force[k] * 1e3, r.z_error[k] * 1e3);
+        for (double x : {r.FT[k] * 1e3, r.MB[k] * 1e6, to_deg(r.FD[k]), to_deg(r.MD[k]), r.normal_force[k] * 1e3,
+                         r.z_error[k] * 1e3})
+          cell(x);
+        std::fputc('\n', f);
       }
   const bool failed = std::ferror(f) != 0;
   if (std::fclose(f) != 0 || failed) throw std::runtime_error("cannot write '" + path + "' (disk full?)");

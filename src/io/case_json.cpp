@@ -273,9 +273,13 @@ json solution_to_json(const Solution& s) {
   j["force_magnitude"] = s.force_magnitude;
   j["arc_length"] = s.arc_length;
   j["angle"] = s.angle;
-  j["contact_point"] = to_json(s.contact_point);
-  j["force"] = to_json(s.force);
-  j["moment"] = to_json(s.moment);
+  j["contact_point_W"] = to_json(s.contact_point_W);
+  j["force_W"] = to_json(s.force_W);
+  j["moment_W"] = to_json(s.moment_W);
+  // Deprecated keys without the frame suffix (docs/formats.md): same values, removed in 0.2.0.
+  j["contact_point"] = j["contact_point_W"];
+  j["force"] = j["force_W"];
+  j["moment"] = j["moment_W"];
   const auto& wf = s.whisker_frame;
   j["whisker_frame"] = {{"force", to_json(wf.force)}, {"moment", to_json(wf.moment)}, {"Fx", wf.force.x()},
                         {"Mx", wf.moment.x()},       {"FT", wf.FT},                  {"MB", wf.MB},
@@ -290,8 +294,9 @@ json solution_to_json(const Solution& s) {
   j["residual"] = s.residual;
   j["iterations"] = s.iterations;
   json shape = json::array();
-  for (const auto& p : s.shape) shape.push_back(to_json(p));
-  j["shape"] = std::move(shape);
+  for (const auto& p : s.shape_W) shape.push_back(to_json(p));
+  j["shape_W"] = shape;
+  j["shape"] = std::move(shape);  // deprecated, removed in 0.2.0
   return j;
 }
 
@@ -308,7 +313,9 @@ json base_wrench_to_json(const BaseWrenchResult& r) {
   json roots = json::array();
   for (const auto& q : r.roots)
     roots.push_back({{"arc_length", q.arc_length}, {"force_magnitude", q.force_magnitude}, {"angle", q.angle},
-                     {"contact_point", to_json(q.contact_point)}, {"chi2", q.chi2}});
+                     {"contact_point_W", to_json(q.contact_point_W)},
+                     {"contact_point", to_json(q.contact_point_W)},  // deprecated, removed in 0.2.0
+                     {"chi2", q.chi2}});
   const auto& id = r.identifiability;
   j["base_wrench"] = {
       {"signals", r.signals.name()},

@@ -105,6 +105,7 @@ namespace {
 // One dataset of `file_type` from `data` in `memory_type`, optionally chunked + deflated.
 void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t memory_type, const void* data,
                const std::vector<hsize_t>& dims, const DatasetOptions& options) {
+  if (options.units.empty()) throw std::logic_error("HDF5 dataset '" + name + "' written without units");
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
   Handle plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   if (!space.valid() || !plist.valid()) throw std::runtime_error("cannot create HDF5 dataset '" + name + "'");
@@ -123,7 +124,8 @@ void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t memory
   Handle d(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, plist.get(), H5P_DEFAULT), H5Dclose);
   if (!d.valid() || H5Dwrite(d.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
-  if (!options.units.empty()) write_string_attribute(d.get(), "units", options.units);
+  write_string_attribute(d.get(), "units", options.units);
+  if (!options.codes.empty()) write_string_attribute(d.get(), "codes", options.codes);
 }
 
 }  // namespace
@@ -157,20 +159,7 @@ void write_fixed_strings(hid_t loc, const std::string& name, const std::vector<s
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
   H5Tset_size(type.get(), width);
   H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
-  write_raw(loc, name, type.get(), type.get(), buffer.data(), {static_cast<hsize_t>(data.size())}, {});
-}
-
-void write_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data) {
-  std::vector<const char*> ptrs;
-  for (const auto& s : data) ptrs.push_back(s.c_str());
-  const hsize_t n = data.size();
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.get(), H5T_VARIABLE);
-  H5Tset_cset(type.get(), H5T_CSET_UTF8);
-  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
-  Handle d(H5Dcreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
-  if (!d.valid() || H5Dwrite(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()) < 0)
-    throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
+  write_raw(loc, name, type.get(), type.get(), buffer.data(), {static_cast<hsize_t>(data.size())}, {"text"});
 }
 
 namespace {

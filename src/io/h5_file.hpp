@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vibrissa::io::h5 {
@@ -63,23 +64,26 @@ std::optional<std::vector<hsize_t>> dataset_dims(hid_t loc, const std::string& n
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector<hsize_t>& dims,
                                  const std::string& source);
 
+/// Every dataset written states its units (docs/formats.md, "Units and codes"): "1" dimensionless, "rad",
+/// "code" for enum codes (then `codes` gives the code table), "text" for strings.
 struct DatasetOptions {
-  std::string units;      ///< written as the dataset's "units" attribute unless empty
+  DatasetOptions(std::string units_, bool compress_ = false, std::string codes_ = {})
+      : units(std::move(units_)), compress(compress_), codes(std::move(codes_)) {}
+  std::string units;      ///< the dataset's "units" attribute; required (std::logic_error when empty)
   bool compress = false;  ///< chunk + deflate datasets of more than 4096 values (mostly-zero arrays shrink)
+  std::string codes;      ///< the "codes" attribute of a code dataset ("0 free, 1 contact, ...") unless empty
 };
 void write_dataset(hid_t loc, const std::string& name, const std::vector<double>& data,
-                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options);
 void write_dataset(hid_t loc, const std::string& name, const std::vector<float>& data,
-                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options);
 void write_dataset(hid_t loc, const std::string& name, const std::vector<int>& data,
-                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options);
 void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int16_t>& data,
-                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options);
 void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int8_t>& data,
-                   const std::vector<hsize_t>& dims, const DatasetOptions& options = {});
-/// Variable-length UTF-8 strings.
-void write_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data);
-/// Fixed-length strings, NUL-padded to the longest + 1.
+                   const std::vector<hsize_t>& dims, const DatasetOptions& options);
+/// Fixed-length strings, NUL-padded to the longest + 1 (units "text").
 void write_fixed_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data);
 
 std::optional<std::string> read_string_attribute(hid_t loc, const std::string& name, const std::string& source);

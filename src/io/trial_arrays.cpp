@@ -141,34 +141,35 @@ trial::Trial assemble_trial(const ArrayReader& r) {
 TrialArrays disassemble_trial(const trial::Trial& t) {
   TrialArrays out;
   const std::size_t n = t.frames();
-  auto vec = [&](const std::vector<double>& v) { return NamedArray{{v.size()}, v}; };
+  auto vec = [&](const std::vector<double>& v, const char* units) { return NamedArray{{v.size()}, v, units}; };
   auto pts = [](const std::vector<Eigen::Vector3d>& p) {
-    NamedArray a{{p.size(), 3}, {}};
+    NamedArray a{{p.size(), 3}, {}, "m"};
     for (const auto& q : p) a.data.insert(a.data.end(), {q.x(), q.y(), q.z()});
     return a;
   };
-  out.arrays.emplace_back("time", vec(t.time));
+  out.arrays.emplace_back("time", vec(t.time, "s"));
   out.arrays.emplace_back("base", pts(t.base_W));
-  out.arrays.emplace_back("theta", vec(t.theta));
-  out.arrays.emplace_back("phi", vec(t.phi));
-  if (t.has_zeta()) out.arrays.emplace_back("zeta", vec(t.zeta));
-  out.arrays.emplace_back("contact", vec(std::vector<double>(t.contact.begin(), t.contact.end())));
+  out.arrays.emplace_back("theta", vec(t.theta, "rad"));
+  out.arrays.emplace_back("phi", vec(t.phi, "rad"));
+  if (t.has_zeta()) out.arrays.emplace_back("zeta", vec(t.zeta, "rad"));
+  out.arrays.emplace_back("contact", vec(std::vector<double>(t.contact.begin(), t.contact.end()), "1"));
   if (t.has_contact_point()) out.arrays.emplace_back("contact_point", pts(t.contact_W));
   if (t.has_shapes()) {
     std::size_t K = 0;
     for (const auto& s : t.shape_W) K = std::max(K, s.size());
-    NamedArray a{{n, K, 3}, std::vector<double>(n * K * 3, nan_v)};
+    NamedArray a{{n, K, 3}, std::vector<double>(n * K * 3, nan_v), "m"};
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t k = 0; k < t.shape_W[i].size(); ++k)
         for (int c = 0; c < 3; ++c) a.data[(i * K + k) * 3 + static_cast<std::size_t>(c)] = t.shape_W[i][k][c];
     out.arrays.emplace_back("shape", std::move(a));
   }
   if (!t.reconstructed.empty())
-    out.arrays.emplace_back("reconstructed", vec(std::vector<double>(t.reconstructed.begin(), t.reconstructed.end())));
-  if (!t.reprojection_px.empty()) out.arrays.emplace_back("reprojection_px", vec(t.reprojection_px));
-  if (!t.likelihood.empty()) out.arrays.emplace_back("likelihood", vec(t.likelihood));
+    out.arrays.emplace_back("reconstructed",
+                            vec(std::vector<double>(t.reconstructed.begin(), t.reconstructed.end()), "1"));
+  if (!t.reprojection_px.empty()) out.arrays.emplace_back("reprojection_px", vec(t.reprojection_px, "px"));
+  if (!t.likelihood.empty()) out.arrays.emplace_back("likelihood", vec(t.likelihood, "1"));
   out.arrays.emplace_back("rest_shape", pts(t.meta.rest_shape));
-  NamedArray e{{t.meta.edges.size(), 6}, {}};
+  NamedArray e{{t.meta.edges.size(), 6}, {}, "m"};  // point [m], then a unit direction
   for (const auto& edge : t.meta.edges)
     e.data.insert(e.data.end(), {edge.point.x(), edge.point.y(), edge.point.z(), edge.direction.x(),
                                  edge.direction.y(), edge.direction.z()});

@@ -13,6 +13,7 @@ namespace vibrissa::io {
 struct NamedArray {
   std::vector<std::size_t> dims;  ///< row-major dimensions
   std::vector<double> data;
+  std::string units;  ///< what a writer states ("m", "rad", "s", "1", "px"); readers leave it empty
 };
 
 /// Lookup functions of one open file; each returns nullopt when the name is absent.

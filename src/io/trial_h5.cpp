@@ -47,7 +47,7 @@ void write_trial_h5(const trial::Trial& t, const std::string& path) {
     h5::write_double_attribute(file.get(), "format_version", 1.0);
     for (const auto& [name, a] : arrays.arrays) {
       std::vector<hsize_t> dims(a.dims.begin(), a.dims.end());
-      h5::write_dataset(file.get(), name, a.data, dims);
+      h5::write_dataset(file.get(), name, a.data, dims, {a.units});
     }
     for (const auto& [name, s] : arrays.texts) h5::write_string_attribute(file.get(), name, s);
     for (const auto& [name, v] : arrays.numbers) h5::write_double_attribute(file.get(), name, v);

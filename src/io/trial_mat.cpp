@@ -170,6 +170,22 @@ void write_trial_mat(const trial::Trial& t, const std::string& path) {
       double x = v;
       put(name, MAT_C_DOUBLE, MAT_T_DOUBLE, {1, 1}, &x);
     }
+    // A struct `units` with one char field per array (units.theta = 'rad'), as HDF5's units attributes.
+    std::vector<const char*> fields;
+    for (const auto& entry : arrays.arrays) fields.push_back(entry.first.c_str());
+    fields.push_back(nullptr);
+    const std::size_t one[2] = {1, 1};
+    VarPtr units(Mat_VarCreateStruct2("units", 2, one, fields.data()));
+    if (!units) throw std::runtime_error(path + ": cannot create variable 'units'");
+    for (const auto& [name, a] : arrays.arrays) {
+      std::string text = a.units;
+      std::size_t dims[2] = {1, text.size()};
+      matvar_t* field = Mat_VarCreate(nullptr, MAT_C_CHAR, MAT_T_UINT8, 2, dims, text.data(), 0);
+      if (!field) throw std::runtime_error(path + ": cannot write units." + name);
+      if (matvar_t* previous = Mat_VarSetStructFieldByName(units.get(), name.c_str(), 0, field)) Mat_VarFree(previous);
+    }
+    if (Mat_VarWrite(mat.get(), units.get(), MAT_COMPRESSION_NONE) != 0)
+      throw std::runtime_error(path + ": cannot write variable 'units'");
   });
 }
 

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "code_tables.hpp"
 #include "h5_file.hpp"
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/trial/trial_run.hpp"
@@ -24,13 +25,13 @@ constexpr double deg = 180.0 / std::numbers::pi;
 
 void add_mode(ResultTable& t, const PipelineResult& r, Mode mode, const std::string& prefix) {
   const std::size_t n = r.frames.size();
-  auto col = [&](const std::string& name, auto&& get) {
+  auto col = [&](const std::string& name, const char* units, auto&& get) {
     std::vector<double> v(n);
     for (std::size_t i = 0; i < n; ++i) {
       const ModeFrame& m = r.frames[i].mode(mode);
       v[i] = m.ok() ? static_cast<double>(get(m)) : std::nan("");
     }
-    t.numeric.emplace_back(prefix + name, std::move(v));
+    t.numeric.push_back({prefix + name, std::move(v), units});
   };
   std::vector<std::string> status(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -39,21 +40,26 @@ void add_mode(ResultTable& t, const PipelineResult& r, Mode mode, const std::str
   }
   t.text.emplace_back(prefix + "status", std::move(status));
   const char* xyz[3] = {"x", "y", "z"};
-  for (int a = 0; a < 3; ++a) col(std::string("contact_") + xyz[a], [a](const ModeFrame& m) { return m.contact_W[a]; });
-  col("height", [](const ModeFrame& m) { return m.height; });
-  col("s_applied", [](const ModeFrame& m) { return m.s_applied; });
-  for (int a = 0; a < 3; ++a) col(std::string("F") + xyz[a] + "_world", [a](const ModeFrame& m) { return m.force_W[a]; });
-  for (int a = 0; a < 3; ++a) col(std::string("M") + xyz[a] + "_world", [a](const ModeFrame& m) { return m.moment_W[a]; });
-  for (int a = 0; a < 3; ++a) col(std::string("F") + xyz[a] + "_B", [a](const ModeFrame& m) { return m.signals_B.force[a]; });
-  for (int a = 0; a < 3; ++a) col(std::string("M") + xyz[a] + "_B", [a](const ModeFrame& m) { return m.signals_B.moment[a]; });
-  col("FT", [](const ModeFrame& m) { return m.signals_B.FT; });
-  col("MB", [](const ModeFrame& m) { return m.signals_B.MB; });
-  col("FD_deg", [](const ModeFrame& m) { return m.signals_B.FD * deg; });
-  col("MD_deg", [](const ModeFrame& m) { return m.signals_B.MD * deg; });
-  col("normal_force", [](const ModeFrame& m) { return m.normal_force; });
-  col("friction_force", [](const ModeFrame& m) { return m.friction_force; });
-  col("shape_error", [](const ModeFrame& m) { return m.shape_error; });
-  col("iterations", [](const ModeFrame& m) { return m.iterations; });
+  for (int a = 0; a < 3; ++a)
+    col(std::string("contact_") + xyz[a], "m", [a](const ModeFrame& m) { return m.contact_W[a]; });
+  col("height", "m", [](const ModeFrame& m) { return m.height; });
+  col("s_applied", "m", [](const ModeFrame& m) { return m.s_applied; });
+  for (int a = 0; a < 3; ++a)
+    col(std::string("F") + xyz[a] + "_world", "N", [a](const ModeFrame& m) { return m.force_W[a]; });
+  for (int a = 0; a < 3; ++a)
+    col(std::string("M") + xyz[a] + "_world", "N m", [a](const ModeFrame& m) { return m.moment_W[a]; });
+  for (int a = 0; a < 3; ++a)
+    col(std::string("F") + xyz[a] + "_B", "N", [a](const ModeFrame& m) { return m.signals_B.force[a]; });
+  for (int a = 0; a < 3; ++a)
+    col(std::string("M") + xyz[a] + "_B", "N m", [a](const ModeFrame& m) { return m.signals_B.moment[a]; });
+  col("FT", "N", [](const ModeFrame& m) { return m.signals_B.FT; });
+  col("MB", "N m", [](const ModeFrame& m) { return m.signals_B.MB; });
+  col("FD_deg", "deg", [](const ModeFrame& m) { return m.signals_B.FD * deg; });
+  col("MD_deg", "deg", [](const ModeFrame& m) { return m.signals_B.MD * deg; });
+  col("normal_force", "N", [](const ModeFrame& m) { return m.normal_force; });
+  col("friction_force", "N", [](const ModeFrame& m) { return m.friction_force; });
+  col("shape_error", "m", [](const ModeFrame& m) { return m.shape_error; });
+  col("iterations", "1", [](const ModeFrame& m) { return m.iterations; });
 }
 
 nlohmann::json num(double v) { return finite_or_null(v); }
@@ -226,29 +232,30 @@ ResultTable result_table(const PipelineResult& r, const TrialAnalysis& a) {
     period[i] = r.frames[i].period;
     edge[i] = r.frames[i].period_edge;
   }
-  t.numeric = {{"time", time}, {"contact", contact}, {"period", period}, {"period_edge", edge},
-               {"theta", tr.theta}, {"phi", tr.phi}, {"zeta", tr.zeta}};
+  t.numeric = {{"time", time, "s"},     {"contact", contact, "1"}, {"period", period, "1"},
+               {"period_edge", edge, "1"}, {"theta", tr.theta, "rad"}, {"phi", tr.phi, "rad"},
+               {"zeta", tr.zeta, "rad"}};
   if (r.has_contact_point_mode) add_mode(t, r, Mode::contact_point, "cp_");
   if (r.has_edge_mode) add_mode(t, r, Mode::edge, "edge_");
   if (r.has_frictional_mode) add_mode(t, r, Mode::frictional_edge, "fric_");
   if (a.friction) {
-    t.numeric.emplace_back("mu", a.friction->mu);
+    t.numeric.push_back({"mu", a.friction->mu, "1"});
     std::vector<double> o(n), used(n);
     for (std::size_t i = 0; i < n; ++i) {
       o[i] = a.friction->outlier[i];
       used[i] = a.friction->used[i];
     }
-    t.numeric.emplace_back("mu_outlier", o);
-    t.numeric.emplace_back("mu_used", used);
+    t.numeric.push_back({"mu_outlier", o, "1"});
+    t.numeric.push_back({"mu_used", used, "1"});
   }
-  if (a.friction_frictional) t.numeric.emplace_back("fric_mu", a.friction_frictional->mu);
+  if (a.friction_frictional) t.numeric.push_back({"fric_mu", a.friction_frictional->mu, "1"});
   if (a.z_error) {
-    t.numeric.emplace_back("z_error", a.z_error->measured);
-    t.numeric.emplace_back("z_error_eq6", a.z_error->eq6);
-    t.numeric.emplace_back("z_error_eq7", a.z_error->eq7);
+    t.numeric.push_back({"z_error", a.z_error->measured, "m"});
+    t.numeric.push_back({"z_error_eq6", a.z_error->eq6, "m"});
+    t.numeric.push_back({"z_error_eq7", a.z_error->eq7, "m"});
   }
-  t.numeric.emplace_back("kinematic_height", a.kinematic.predicted);
-  t.numeric.emplace_back("tracked_height", a.kinematic.measured);
+  t.numeric.push_back({"kinematic_height", a.kinematic.predicted, "m"});
+  t.numeric.push_back({"tracked_height", a.kinematic.measured, "m"});
   return t;
 }
 
@@ -257,14 +264,14 @@ namespace {
 void print_result_table_csv(const ResultTable& t, std::ostream& out) {
   out << std::setprecision(12);
   bool first = true;
-  for (const auto& c : t.numeric) out << (first ? "" : ",") << c.first, first = false;
+  for (const auto& c : t.numeric) out << (first ? "" : ",") << c.name, first = false;
   for (const auto& c : t.text) out << "," << c.first;
   out << "\n";
-  const std::size_t n = t.numeric.empty() ? 0 : t.numeric.front().second.size();
+  const std::size_t n = t.numeric.empty() ? 0 : t.numeric.front().values.size();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < t.numeric.size(); ++k) {
       if (k) out << ',';
-      const double v = t.numeric[k].second[i];
+      const double v = t.numeric[k].values[i];
       if (std::isfinite(v)) out << v;
       else out << "nan";
     }
@@ -278,8 +285,16 @@ void create_result_table_h5(const ResultTable& t, const std::string& path) {
   h5::Handle file = h5::create_file(path);
   {
     h5::Handle g = h5::create_group(file.get(), "frames");
-    for (const auto& [name, v] : t.numeric) h5::write_dataset(g.get(), name, v, {static_cast<hsize_t>(v.size())});
-    for (const auto& [name, v] : t.text) h5::write_strings(g.get(), name, v);
+    for (const auto& c : t.numeric)
+      h5::write_dataset(g.get(), c.name, c.values, {static_cast<hsize_t>(c.values.size())}, {c.units});
+    // Status columns as int8 codes with their code table (text in frames.csv).
+    for (const auto& [name, v] : t.text) {
+      std::vector<std::int8_t> codes;
+      codes.reserve(v.size());
+      for (const auto& s : v) codes.push_back(status_code(s, name));
+      h5::write_dataset(g.get(), name, codes, {static_cast<hsize_t>(codes.size())},
+                        {"code", false, status_code_table()});
+    }
   }
   h5::write_string_attribute(file.get(), "format", "vibrissa-trial-results");
   h5::close_file(file, path);
@@ -302,6 +317,9 @@ nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
   const Trial& t = r.pre.trial;
   json j;
   j["source"] = t.source;
+  // The units the trial file declared; its data were converted to SI on reading (every output is SI).
+  const Units& u = t.meta.declared_units;
+  j["input_units"] = {{"length", u.length}, {"angle", u.angle}, {"time", u.time}};
   j["frames"] = t.frames();
   j["sample_rate_Hz"] = r.pre.sample_rate_hz;
   j["contact_periods"] = r.pre.periods.size();

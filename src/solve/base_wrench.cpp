@@ -214,7 +214,7 @@ BaseWrenchRoot root_of(const Problem& p, const Placement& X, const detail::LMRes
   r.force_magnitude = std::hypot(r.state.force_y, r.state.force_z);
   r.angle = std::atan2(r.state.force_z, r.state.force_y);
   const std::array<double, 3> u = {lm.u[0], lm.u[1], lm.u[2]};
-  r.contact_point = X.to_world(to_eigen(signals_at<double>(p.w, p.sc, u).p_B));
+  r.contact_point_W = X.to_world(to_eigen(signals_at<double>(p.w, p.sc, u).p_B));
   r.chi2 = p.chi2(lm.cost);
   return r;
 }

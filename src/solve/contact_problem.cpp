@@ -87,9 +87,9 @@ void fill_solution(const Whisker& w, const Placement& X, const LoadState& state,
   out.arc_length = state.arc_length;
   out.force_magnitude = F_B.norm();
   out.angle = force_angle(w, X, state);
-  out.contact_point = X.to_world(p_B);
-  out.force = X.R_WB * F_B;
-  out.moment = X.R_WB * M_B;
+  out.contact_point_W = X.to_world(p_B);
+  out.force_W = X.R_WB * F_B;
+  out.moment_W = X.R_WB * M_B;
   auto& wf = out.whisker_frame;
   wf.force = F_B;
   wf.moment = M_B;
@@ -99,14 +99,14 @@ void fill_solution(const Whisker& w, const Placement& X, const LoadState& state,
   wf.MD = std::atan2(M_B.z(), M_B.y());
   if (edge_direction_W) {
     const Eigen::Vector3d d = edge_direction_W->normalized();
-    out.edge_force = out.force.dot(d);
-    out.normal_force = (out.force - *out.edge_force * d).norm();
+    out.edge_force = out.force_W.dot(d);
+    out.normal_force = (out.force_W - *out.edge_force * d).norm();
   }
-  out.shape.clear();
+  out.shape_W.clear();
   if (options.compute_shape) {
     shape_B(w, state, ws);
-    out.shape.reserve(ws.nodes_B.size());
-    for (const auto& p : ws.nodes_B) out.shape.push_back(X.to_world(p));
+    out.shape_W.reserve(ws.nodes_B.size());
+    for (const auto& p : ws.nodes_B) out.shape_W.push_back(X.to_world(p));
   }
 }
 
@@ -140,7 +140,7 @@ Solution unloaded_solution(const Whisker& w, const Placement& X, Status status, 
   LoadState rest;
   rest.arc_length = 0.0;
   fill_solution(w, X, rest, options, std::nullopt, out);
-  out.contact_point = X.p_W_base;
+  out.contact_point_W = X.p_W_base;
   set_status(out, status, message);
   return out;
 }

@@ -21,11 +21,11 @@ namespace detail {
 void check_contact_side(const Whisker& w, const Placement& X, const std::optional<Eigen::Vector3d>& approach_W,
                         Solution& out) {
   if (out.status != Status::converged || out.force_magnitude == 0.0) return;
-  const Eigen::Vector3d displacement = out.contact_point - X.to_world(w.rest_point_B(out.arc_length));
-  if (out.force.dot(displacement) < -1e-12 * out.force_magnitude * w.length()) {
+  const Eigen::Vector3d displacement = out.contact_point_W - X.to_world(w.rest_point_B(out.arc_length));
+  if (out.force_W.dot(displacement) < -1e-12 * out.force_magnitude * w.length()) {
     set_status(out, Status::no_contact, "the edge would have to pull the whisker toward it: not pressed against the edge");
     out.friction = FrictionState::none;
-  } else if (approach_W && out.force.dot(*approach_W) > 0.0) {
+  } else if (approach_W && out.force_W.dot(*approach_W) > 0.0) {
     set_status(out, Status::no_contact, "the whisker is on the far side of the edge for the given approach direction");
     out.friction = FrictionState::none;
   }

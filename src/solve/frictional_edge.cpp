@@ -54,7 +54,7 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
   }
 
   // 3. Slip toward the frictionless point until the friction cone is met.
-  const double travel = (free.contact_point - q_prev).dot(d);
+  const double travel = (free.contact_point_W - q_prev).dot(d);
   if (travel == 0.0)
     return finish(free, FrictionState::slip, "slip: previous contact coincides with the frictionless point");
   const double sigma = travel > 0.0 ? 1.0 : -1.0;

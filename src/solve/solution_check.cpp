@@ -18,12 +18,12 @@ namespace detail {
 bool all_finite(const Solution& s) {
   const auto& wf = s.whisker_frame;
   bool ok = std::isfinite(s.force_magnitude) && std::isfinite(s.arc_length) && std::isfinite(s.angle) &&
-            s.contact_point.allFinite() && s.force.allFinite() && s.moment.allFinite() && wf.force.allFinite() &&
+            s.contact_point_W.allFinite() && s.force_W.allFinite() && s.moment_W.allFinite() && wf.force.allFinite() &&
             wf.moment.allFinite() && std::isfinite(wf.FT) && std::isfinite(wf.MB) && std::isfinite(wf.FD) &&
             std::isfinite(wf.MD) && std::isfinite(s.residual) && std::isfinite(s.state.force_x) &&
             std::isfinite(s.state.force_y) && std::isfinite(s.state.force_z) && std::isfinite(s.state.arc_length);
   for (const auto& v : {s.normal_force, s.edge_force, s.other_root_arc_length}) ok = ok && (!v || std::isfinite(*v));
-  for (const auto& p : s.shape) ok = ok && p.allFinite();
+  for (const auto& p : s.shape_W) ok = ok && p.allFinite();
   return ok;
 }
 

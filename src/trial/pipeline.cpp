@@ -32,16 +32,16 @@ void record(const Whisker& w, const TrackedFrame& fr, const Edge& edge, const st
   m.iterations = s.iterations;
   if (s.status != Status::converged) return;
   const Eigen::Vector3d d = edge.direction.normalized();
-  m.contact_W = s.contact_point;
+  m.contact_W = s.contact_point_W;
   m.s_applied = s.arc_length;
-  m.force_W = s.force;
-  m.moment_W = s.moment;
+  m.force_W = s.force_W;
+  m.moment_W = s.moment_W;
   m.signals_B = s.whisker_frame;
-  m.friction_force = s.edge_force ? *s.edge_force : s.force.dot(d);
-  m.normal_force = s.normal_force ? *s.normal_force : (s.force - s.force.dot(d) * d).norm();
-  m.height = height_along_edge(edge, s.contact_point);
-  if (tracked && !tracked->empty() && !s.shape.empty())
-    m.shape_error = mean_shape_error(s.shape, w.node_arc_lengths(), s.arc_length, *tracked);
+  m.friction_force = s.edge_force ? *s.edge_force : s.force_W.dot(d);
+  m.normal_force = s.normal_force ? *s.normal_force : (s.force_W - s.force_W.dot(d) * d).norm();
+  m.height = height_along_edge(edge, s.contact_point_W);
+  if (tracked && !tracked->empty() && !s.shape_W.empty())
+    m.shape_error = mean_shape_error(s.shape_W, w.node_arc_lengths(), s.arc_length, *tracked);
 }
 
 /// The edge a period touches: nearest to the tracked contact points, else to the rest whisker at onset.

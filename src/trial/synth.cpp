@@ -109,7 +109,7 @@ Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const RunContro
       const Solution& s = fr.solution;
       if (fr.state == ContactState::contact) {
         t.contact[i] = 1;
-        t.contact_W[i] = s.contact_point;
+        t.contact_W[i] = s.contact_point_W;
         ++st.contact_frames;
         if (s.friction == FrictionState::stick) ++st.stick_frames;
         if (s.friction == FrictionState::slip) ++st.slip_frames;

@@ -86,7 +86,7 @@ TEST(ContactTracker, OnsetIsTheFrameAfterTheRestWhiskerSweepsAcrossThePeg) {
       ASSERT_EQ(f.solution.status, Status::converged);
       EXPECT_EQ(f.solution.friction, FrictionState::stick);
       // Friction starts where the rest whisker met the peg: in the whisker's plane, on the peg.
-      EXPECT_NEAR(f.solution.contact_point.z(), 0.0, 1e-10);
+      EXPECT_NEAR(f.solution.contact_point_W.z(), 0.0, 1e-10);
       EXPECT_NEAR(f.edge_coordinate, 0.0, 1e-10);
       EXPECT_EQ(f.onset_edge_coordinate, f.edge_coordinate);
       // The whisker moved in +theta: the approach is normal to the peg and to the rest whisker's tangent there,
@@ -171,8 +171,8 @@ TEST(ContactTracker, TrackedEdgeFramesEqualWarmStartedSingleSolves) {
     const Solution s = solve_edge(w, X, e.line(), hint, o.solve, warm ? &*warm : nullptr);
     ASSERT_EQ(f.solution.status, s.status) << k;
     EXPECT_EQ(f.solution.arc_length, s.arc_length) << k;
-    EXPECT_EQ(f.solution.force, s.force) << k;
-    EXPECT_EQ(f.solution.shape, s.shape) << k;
+    EXPECT_EQ(f.solution.force_W, s.force_W) << k;
+    EXPECT_EQ(f.solution.shape_W, s.shape_W) << k;
     EXPECT_EQ(f.onset, k == 0);
     if (s.status == Status::converged) {
       warm = s.state;
@@ -202,7 +202,7 @@ TEST(ContactTracker, FrictionStateFollowsTheCoulombCone) {
       EXPECT_EQ(s.friction, mu == 0.0 ? FrictionState::slip : FrictionState::stick);
       EXPECT_LE(std::abs(*s.edge_force), (mu * (1 + 1e-9) + 1e-9) * *s.normal_force);
       if (mu > 0.0) {  // stuck where the rest whisker first lay nearest the edge
-        EXPECT_LT((s.contact_point - nearest_rest_point(w, at_theta(0.0), e.line()).on_edge_W).norm(), 1e-10);
+        EXPECT_LT((s.contact_point_W - nearest_rest_point(w, at_theta(0.0), e.line()).on_edge_W).norm(), 1e-10);
       }
     }
   }

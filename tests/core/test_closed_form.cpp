@@ -23,7 +23,7 @@ TEST(ClosedForm, UniformCantileverSmallTipLoad) {
     const Solution sol = solve_force(w, F, s, 0.0);
     const double exact = F * s * s * s / (3.0 * EI);
     const double ds = L / 100;  // second order: relative error below (ds / s)^2
-    EXPECT_NEAR(sol.contact_point.y() / exact, 1.0, (ds / s) * (ds / s)) << "s = " << s;
+    EXPECT_NEAR(sol.contact_point_W.y() / exact, 1.0, (ds / s) * (ds / s)) << "s = " << s;
   }
 }
 
@@ -42,7 +42,7 @@ TEST(ClosedForm, TaperedConeEquation4AndSlope) {
     const double F = 1e-9;  // linear regime
     const Solution sol = solve_force(w, F, a, 0.0);
     const double y = 4.0 * F / (3.0 * E * std::numbers::pi * std::pow(R, 4)) * Lc * a * a * a / (Lc - a);
-    EXPECT_NEAR(sol.contact_point.y() / y, 1.0, 3e-4) << "a/S = " << a / S;
+    EXPECT_NEAR(sol.contact_point_W.y() / y, 1.0, 3e-4) << "a/S = " << a / S;
     // Slope: tangent of the deflected link at the load.
     std::vector<Eigen::Vector3d> omega(static_cast<std::size_t>(w.links()));
     const auto c = deflect<double>(w, V3<double>(0, F, 0), V3<double>(0, 0, 0), a, omega.data());
@@ -63,11 +63,11 @@ TEST(ClosedForm, DeadTipLoadMattiasson) {
     const double L = w.length(), P = c.alpha * w.base_bending_stiffness() / (L * L);
     const Solution sol = solve_dead_load(w, Eigen::Vector3d(0, P, 0), L);
     ASSERT_EQ(sol.status, Status::converged) << sol.message;
-    EXPECT_NEAR(sol.contact_point.y() / L, c.v_over_L, 2e-4) << "alpha " << c.alpha;
-    EXPECT_NEAR((L - sol.contact_point.x()) / L, c.foreshortening, 2e-4) << "alpha " << c.alpha;
-    const Eigen::Vector3d tip = sol.shape.back() - sol.shape[sol.shape.size() - 2];
+    EXPECT_NEAR(sol.contact_point_W.y() / L, c.v_over_L, 2e-4) << "alpha " << c.alpha;
+    EXPECT_NEAR((L - sol.contact_point_W.x()) / L, c.foreshortening, 2e-4) << "alpha " << c.alpha;
+    const Eigen::Vector3d tip = sol.shape_W.back() - sol.shape_W[sol.shape_W.size() - 2];
     EXPECT_NEAR(std::atan2(tip.y(), tip.x()), c.angle, 5e-4) << "alpha " << c.alpha;
-    EXPECT_NEAR((sol.force - Eigen::Vector3d(0, P, 0)).norm() / P, 0.0, 1e-10);
+    EXPECT_NEAR((sol.force_W - Eigen::Vector3d(0, P, 0)).norm() / P, 0.0, 1e-10);
   }
 }
 
@@ -76,9 +76,9 @@ TEST(ClosedForm, FollowerLoadElastica) {
   const Whisker w = uniform_rod(100);
   const double a = w.length(), P = w.base_bending_stiffness() / (a * a);
   const Solution sol = solve_force(w, P, a, 0.0);
-  EXPECT_NEAR(sol.contact_point.y() / a, 0.32064199, 3e-5);
-  EXPECT_NEAR((a - sol.contact_point.x()) / a, 0.06435433, 1e-5);
-  const Eigen::Vector3d tip = sol.shape.back() - sol.shape[sol.shape.size() - 2];
+  EXPECT_NEAR(sol.contact_point_W.y() / a, 0.32064199, 3e-5);
+  EXPECT_NEAR((a - sol.contact_point_W.x()) / a, 0.06435433, 1e-5);
+  const Eigen::Vector3d tip = sol.shape_W.back() - sol.shape_W[sol.shape_W.size() - 2];
   EXPECT_NEAR(std::atan2(tip.y(), tip.x()), 0.49588464, 1e-7);
 }
 
@@ -92,7 +92,7 @@ TEST(ClosedForm, PaperSchemeReproducesPublishedChainError) {
   }();
   const double a = w.length(), P = w.base_bending_stiffness() / (a * a);
   const Solution sol = solve_force(w, P, a, std::numbers::pi);  // Elastica3D's ζ = π pushes toward +y here
-  EXPECT_NEAR(sol.contact_point.y() / a - 0.32064199, 0.46 / 100, 2e-4);
+  EXPECT_NEAR(sol.contact_point_W.y() / a - 0.32064199, 0.46 / 100, 2e-4);
 }
 
 TEST(ClosedForm, PureEndMomentBendsIntoCircularArc) {
@@ -119,7 +119,7 @@ double follower_error(int links, Scheme scheme) {
   const Whisker w = Whisker::from_parabola(0.05, 0.0, p);
   const double a = w.length(), P = w.base_bending_stiffness() / (a * a);
   const double angle = scheme == Scheme::paper ? std::numbers::pi : 0.0;  // both push toward +y
-  return solve_force(w, P, a, angle).contact_point.y() / a - 0.32064199;
+  return solve_force(w, P, a, angle).contact_point_W.y() / a - 0.32064199;
 }
 
 TEST(Convergence, ObservedOrderMatchesEachScheme) {
@@ -138,7 +138,7 @@ TEST(Convergence, TaperedCurvedWhiskerSecondOrder) {
     WhiskerProperties p;
     p.links = n;
     const Whisker w = Whisker::from_parabola(0.04, 12.0, p);
-    return solve_force(w, 2e-4, 0.028, 0.7).contact_point;  // a node for every N
+    return solve_force(w, 2e-4, 0.028, 0.7).contact_point_W;  // a node for every N
   };
   const Eigen::Vector3d a = tip(50), b = tip(100), c = tip(200);
   const double ratio = (a - b).norm() / (b - c).norm();

@@ -59,9 +59,9 @@ TEST(Elastica3D, ForceModeAgreesToRoundOff) {
     const Solution s = solve_force(w, c["force"].get<double>(), c["arc_length"].get<double>(), zeta);
     const std::string what = std::string(c["whisker"]) + " f=" + c["force"].dump() + " s=" + c["arc_length"].dump() +
                              " zeta=" + c["zeta"].dump();
-    expect_close(s.force, vec(c["force_W"]), 1e-9, what + " force");
-    expect_close(s.moment, vec(c["moment_W"]), 1e-9, what + " moment");
-    expect_close(s.contact_point, vec(c["contact_W"]), 1e-9, what + " contact");
+    expect_close(s.force_W, vec(c["force_W"]), 1e-9, what + " force");
+    expect_close(s.moment_W, vec(c["moment_W"]), 1e-9, what + " moment");
+    expect_close(s.contact_point_W, vec(c["contact_W"]), 1e-9, what + " contact");
     EXPECT_NEAR(std::remainder(s.angle - zeta, 2 * std::numbers::pi), 0.0, 1e-12) << what;
     ++n;
   }
@@ -78,9 +78,9 @@ TEST(Elastica3D, ContactModesReturnItsRoots) {
                                             : solve_edge(w, Edge{vec(c["point_W"]), vec(c["direction_W"])}, s_ref);
     ASSERT_EQ(s.status, Status::converged) << what;
     EXPECT_NEAR(s.arc_length, s_ref, 1e-10 * w.length()) << what;
-    expect_close(s.force, vec(ref["force_W"]), 1e-8, what + " force");
-    expect_close(s.moment, vec(ref["moment_W"]), 1e-8, what + " moment");
-    expect_close(s.contact_point, vec(ref["contact_W"]), 1e-9, what + " contact");
+    expect_close(s.force_W, vec(ref["force_W"]), 1e-8, what + " force");
+    expect_close(s.moment_W, vec(ref["moment_W"]), 1e-8, what + " moment");
+    expect_close(s.contact_point_W, vec(ref["contact_W"]), 1e-9, what + " contact");
   }
 }
 
@@ -98,7 +98,7 @@ TEST(Elastica3D, PointModeThroughAForceModeContactReturnsThatLoad) {
     const Solution forward = solve_force(w, f, s_made, made["zeta"].get<double>());
     // A load exactly at a node is a root of the re-mesh at that node (s within round-off of it).
     EXPECT_NEAR(s.arc_length, s_made, 1e-10 * w.length()) << what;
-    expect_close(s.force, forward.force, 1e-8, what + " force");
+    expect_close(s.force_W, forward.force_W, 1e-8, what + " force");
     const double s_elastica = c["elastica3d"]["arc_length"];
     bool listed = false;
     for (const Root& r : s.roots) listed = listed || std::abs(r.arc_length - s_elastica) < 1e-9 * w.length();

@@ -153,14 +153,14 @@ TEST(TrialH5Input, UnknownDatasetsAndArrayAttributesAreRejected) {
     const std::string path = (temp_dir() / name).string();
     h5::QuietErrors quiet;
     h5::Handle f = h5::create_file(path);
-    h5::write_dataset(f.get(), "time", std::vector<double>{0.0, 0.001, 0.002}, {3});
-    h5::write_dataset(f.get(), "base", std::vector<double>(9, 0.0), {3, 3});
-    h5::write_dataset(f.get(), "theta", std::vector<double>{0.1, 0.11, 0.12}, {3});
-    h5::write_dataset(f.get(), "phi", std::vector<double>{0.0, 0.0, 0.0}, {3});
-    h5::write_dataset(f.get(), "contact", std::vector<double>{0.0, 1.0, 0.0}, {3});
-    h5::write_dataset(f.get(), "rest_shape", std::vector<double>{0.0, 0.0, 0.0, 0.01, 0.0002, 0.0, 0.02, 0.0008, 0.0}, {3, 3});
-    h5::write_dataset(f.get(), "edges", std::vector<double>{0.02, 0.01, 0.0, 0.0, 0.0, 1.0}, {1, 6});
-    if (extra_dataset) h5::write_dataset(f.get(), "thetaa", std::vector<double>{0.0, 0.0, 0.0}, {3});
+    h5::write_dataset(f.get(), "time", std::vector<double>{0.0, 0.001, 0.002}, {3}, {"s"});
+    h5::write_dataset(f.get(), "base", std::vector<double>(9, 0.0), {3, 3}, {"m"});
+    h5::write_dataset(f.get(), "theta", std::vector<double>{0.1, 0.11, 0.12}, {3}, {"rad"});
+    h5::write_dataset(f.get(), "phi", std::vector<double>{0.0, 0.0, 0.0}, {3}, {"rad"});
+    h5::write_dataset(f.get(), "contact", std::vector<double>{0.0, 1.0, 0.0}, {3}, {"1"});
+    h5::write_dataset(f.get(), "rest_shape", std::vector<double>{0.0, 0.0, 0.0, 0.01, 0.0002, 0.0, 0.02, 0.0008, 0.0}, {3, 3}, {"m"});
+    h5::write_dataset(f.get(), "edges", std::vector<double>{0.02, 0.01, 0.0, 0.0, 0.0, 1.0}, {1, 6}, {"m"});
+    if (extra_dataset) h5::write_dataset(f.get(), "thetaa", std::vector<double>{0.0, 0.0, 0.0}, {3}, {"rad"});
     if (array_links) {
       const hsize_t two = 2;
       h5::Handle space(H5Screate_simple(1, &two, nullptr), H5Sclose);

@@ -35,12 +35,12 @@ Whisker real_shaped(Scheme scheme, std::optional<double> base_stiffness = std::n
 
 void expect_round_trip(const Whisker& w, double f, double s, double zeta) {
   const Solution fwd = solve_force(w, f, s, zeta);
-  const BaseWrenchResult inv = solve_base_wrench(w, fwd.force, fwd.moment);
+  const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W);
   ASSERT_EQ(inv.solution.status, Status::converged) << "f=" << f << " s=" << s << " zeta=" << zeta;
   EXPECT_NEAR(inv.solution.arc_length, s, 1e-9 * s) << "f=" << f << " s=" << s << " zeta=" << zeta;
   EXPECT_NEAR(inv.solution.force_magnitude, f, 1e-9 * f) << "f=" << f << " s=" << s << " zeta=" << zeta;
   EXPECT_NEAR(angle_difference(inv.solution.angle, zeta), 0.0, 1e-9) << "f=" << f << " s=" << s;
-  EXPECT_LT((inv.solution.contact_point - fwd.contact_point).norm(), 1e-9 * w.length());
+  EXPECT_LT((inv.solution.contact_point_W - fwd.contact_point_W).norm(), 1e-9 * w.length());
   EXPECT_TRUE(inv.identifiability.identifiable);
   EXPECT_EQ(inv.roots.size(), 1U);
 }
@@ -69,7 +69,7 @@ TEST(BaseWrench, ReducedSquareSetRoundTrip) {
   for (double frac : {0.3, 0.7}) {
     const double s = frac * w.length(), f = 5e-4, zeta = deg(35);
     const Solution fwd = solve_force(w, f, s, zeta);
-    const BaseWrenchResult inv = solve_base_wrench(w, fwd.force, fwd.moment, o);
+    const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W, o);
     ASSERT_EQ(inv.solution.status, Status::converged);
     bool found = false;
     for (const auto& r : inv.roots)
@@ -97,7 +97,7 @@ TEST(BaseWrench, CovarianceMatchesFiniteDifferenceJacobian) {
   o.noise_covariance = sd.array().square().matrix().asDiagonal();
   o.noise_covariance(4, 5) = o.noise_covariance(5, 4) = 0.5 * 2e-8 * 2e-8;
   const Solution fwd = solve_force(w, f, s, zeta);
-  const BaseWrenchResult inv = solve_base_wrench(w, fwd.force, fwd.moment, o);
+  const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W, o);
   ASSERT_TRUE(inv.identifiability.identifiable);
 
   // Central differences of force mode in (s, f, zeta), and of the contact point.
@@ -109,7 +109,7 @@ TEST(BaseWrench, CovarianceMatchesFiniteDifferenceJacobian) {
     a[k] += h[k];
     b[k] -= h[k];
     J.col(k) = (signals(w, a[0], a[1], a[2]) - signals(w, b[0], b[1], b[2])) / (2 * h[k]);
-    P.col(k) = (solve_force(w, a[1], a[0], a[2]).contact_point - solve_force(w, b[1], b[0], b[2]).contact_point) /
+    P.col(k) = (solve_force(w, a[1], a[0], a[2]).contact_point_W - solve_force(w, b[1], b[0], b[2]).contact_point_W) /
                (2 * h[k]);
   }
   const Eigen::Matrix3d C = (J.transpose() * o.noise_covariance.inverse() * J).inverse();
@@ -126,7 +126,7 @@ TEST(BaseWrench, BendingMomentsAloneAreUnderdeterminedAlongTheNullDirection) {
   const Solution fwd = solve_force(w, f, s, zeta);
   BaseWrenchOptions o;
   o.signals = SignalSet::bending();
-  const BaseWrenchResult inv = solve_base_wrench(w, fwd.force, fwd.moment, o);
+  const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W, o);
   ASSERT_EQ(inv.solution.status, Status::converged);
   EXPECT_FALSE(inv.identifiability.identifiable);
   EXPECT_TRUE(std::isinf(inv.identifiability.condition_number));
@@ -162,7 +162,7 @@ TEST(BaseWrench, NoisySignalsGiveAStationaryFitNearTheTruth) {
   // A fixed perturbation of about one standard deviation (inconsistent with any contact: M·F != 0).
   const Eigen::Vector3d dF(0.8 * sf, -1.1 * sf, 0.5 * sf), dM(-0.7 * sm, 1.2 * sm, 0.9 * sm);
   const BaseWrenchResult inv =
-      solve_base_wrench(w, fwd.force + w.placement().R_WB * dF, fwd.moment + w.placement().R_WB * dM, o);
+      solve_base_wrench(w, fwd.force_W + w.placement().R_WB * dF, fwd.moment_W + w.placement().R_WB * dM, o);
   ASSERT_EQ(inv.solution.status, Status::converged);
   EXPECT_GT(inv.chi2, 0.0);
   EXPECT_LT(inv.chi2, 6.0);
@@ -176,8 +176,8 @@ TEST(BaseWrench, SeriesWarmStartsMatchColdSolves) {
   std::vector<Eigen::Vector3d> F, M;
   for (int k = 0; k < 8; ++k) {
     const Solution r = solve_force(w, 1e-4 * (1 + k), 0.012 + 0.002 * k, deg(10.0 * k));
-    F.push_back(r.force);
-    M.push_back(r.moment);
+    F.push_back(r.force_W);
+    M.push_back(r.moment_W);
   }
   const auto series = solve_base_wrench_series(w, w.placement(), F, M);
   ASSERT_EQ(series.size(), F.size());
@@ -234,7 +234,7 @@ TEST(BaseWrench, RandomContactsIncludingTheTipRoundTrip) {
     const double f = 1e-6 * std::pow(2000.0, uniform());
     const double zeta = 2.0 * std::numbers::pi * uniform();
     const Solution fwd = solve_force(w, f, s, zeta);
-    const BaseWrenchResult inv = solve_base_wrench(w, fwd.force, fwd.moment);
+    const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W);
     ++cases;
     if (inv.solution.status != Status::converged) continue;
     const bool same = std::abs(inv.solution.arc_length - s) <= 1e-9 * s &&

@@ -32,7 +32,7 @@ Pose tilted_pose() {
 TEST(PointMode, RecoversTheForceModeLoad) {
   const Whisker w = rat_whisker(100, tilted_pose());
   const Solution forward = solve_force(w, 1.5e-4, 0.0213, 0.8);
-  const Solution sol = solve_point(w, forward.contact_point, 0.0213);
+  const Solution sol = solve_point(w, forward.contact_point_W, 0.0213);
   ASSERT_EQ(sol.status, Status::converged) << sol.message;
   EXPECT_LE(sol.residual, 1e-12);
   EXPECT_NEAR(sol.arc_length, 0.0213, 1e-10);
@@ -46,23 +46,23 @@ TEST(PointMode, ReportsAndSelectsAnotherRoot) {
   const Solution far = solve_force(w, 1e-4, 0.030, 0.3);
   SolveOptions o;
   o.find_other_roots = true;
-  const Solution cold = solve_point(w, far.contact_point, std::nullopt, o);
+  const Solution cold = solve_point(w, far.contact_point_W, std::nullopt, o);
   ASSERT_EQ(cold.status, Status::converged);
   ASSERT_TRUE(cold.other_root_arc_length.has_value());
   const double s_other = std::abs(cold.arc_length - 0.030) < 1e-8 ? *cold.other_root_arc_length : cold.arc_length;
-  const Solution a = solve_point(w, far.contact_point, 0.030);
-  const Solution b = solve_point(w, far.contact_point, s_other);
+  const Solution a = solve_point(w, far.contact_point_W, 0.030);
+  const Solution b = solve_point(w, far.contact_point_W, s_other);
   EXPECT_NEAR(a.arc_length, 0.030, 1e-9);
   EXPECT_NEAR(b.arc_length, s_other, 1e-9);
   EXPECT_GT(std::abs(a.arc_length - b.arc_length), 1e-3);
-  EXPECT_LE((b.contact_point - far.contact_point).norm(), 1e-12);
+  EXPECT_LE((b.contact_point_W - far.contact_point_W).norm(), 1e-12);
 }
 
 TEST(PointMode, OutOfReachIsNoContactNotNaN) {
   const Whisker w = rat_whisker();
   const Solution s = solve_point(w, Eigen::Vector3d(0.1, 0.0, 0.0));
   EXPECT_EQ(s.status, Status::no_contact);
-  EXPECT_TRUE(s.force.allFinite());
+  EXPECT_TRUE(s.force_W.allFinite());
   EXPECT_EQ(s.force_magnitude, 0.0);
 }
 
@@ -72,17 +72,17 @@ TEST(EdgeMode, ContactOnLineForceNormalToLineAndWhisker) {
   const Solution s = solve_edge(w, peg);
   ASSERT_EQ(s.status, Status::converged) << s.message;
   const Eigen::Vector3d d = peg.direction.normalized();
-  Eigen::Vector3d off = s.contact_point - peg.point;
+  Eigen::Vector3d off = s.contact_point_W - peg.point;
   off -= off.dot(d) * d;
   EXPECT_LE(off.norm(), 1e-12);
-  EXPECT_LE(std::abs(s.force.dot(d)), 1e-12 * s.force_magnitude);
+  EXPECT_LE(std::abs(s.force_W.dot(d)), 1e-12 * s.force_magnitude);
   EXPECT_NEAR(*s.edge_force, 0.0, 1e-15);
   EXPECT_NEAR(*s.normal_force, s.force_magnitude, 1e-15);
   // Normal to the whisker: orthogonal to the deflected tangent at the contact.
   const std::size_t k = static_cast<std::size_t>(s.arc_length / 0.0004);
-  const Eigen::Vector3d t = (s.shape[k + 1] - s.shape[k]).normalized();
-  EXPECT_LT(std::abs(s.force.normalized().dot(t)), 0.02);  // link vs smooth tangent: O(ds) in angle
-  EXPECT_GT(std::abs(s.contact_point.z()), 1e-3);  // it slipped up the peg: the frictionless answer
+  const Eigen::Vector3d t = (s.shape_W[k + 1] - s.shape_W[k]).normalized();
+  EXPECT_LT(std::abs(s.force_W.normalized().dot(t)), 0.02);  // link vs smooth tangent: O(ds) in angle
+  EXPECT_GT(std::abs(s.contact_point_W.z()), 1e-3);  // it slipped up the peg: the frictionless answer
 }
 
 TEST(EdgeMode, OutOfReachWrongSideAndSlipOff) {
@@ -95,7 +95,7 @@ TEST(EdgeMode, OutOfReachWrongSideAndSlipOff) {
   const Edge deep = vertical_peg(0.037, -0.004);
   EXPECT_EQ(solve_edge(w, deep).status, Status::slipped_off);
   const Solution s = solve_edge(w, deep);
-  EXPECT_TRUE(s.force.allFinite());
+  EXPECT_TRUE(s.force_W.allFinite());
   EXPECT_TRUE(std::isfinite(s.arc_length));
 }
 
@@ -123,24 +123,24 @@ TEST(FrictionalEdge, LimitsAndFrictionCone) {
   const Whisker w = rat_whisker(100, tilted_pose());
   const Edge peg = vertical_peg(0.020, 0.0);
   const Solution free = solve_edge(w, peg);
-  const Eigen::Vector3d previous = free.contact_point - Eigen::Vector3d(0, 0, 0.003);
+  const Eigen::Vector3d previous = free.contact_point_W - Eigen::Vector3d(0, 0, 0.003);
   // mu = 0: the frictionless edge mode.
   const Solution zero = solve_frictional_edge(w, peg, 0.0, previous);
-  EXPECT_LE((zero.contact_point - free.contact_point).norm(), 1e-12);
+  EXPECT_LE((zero.contact_point_W - free.contact_point_W).norm(), 1e-12);
   // mu -> infinity: contact-point mode at the stuck point.
   const Solution stuck = solve_frictional_edge(w, peg, 1e6, previous);
   const Solution point = solve_point(w, previous, std::nullopt, {}, nullptr, peg.direction);
   ASSERT_EQ(stuck.status, Status::converged);
-  EXPECT_LE((stuck.contact_point - previous).norm(), 1e-12);
-  EXPECT_LE((stuck.force - point.force).norm(), 1e-8 * point.force_magnitude);
+  EXPECT_LE((stuck.contact_point_W - previous).norm(), 1e-12);
+  EXPECT_LE((stuck.force_W - point.force_W).norm(), 1e-8 * point.force_magnitude);
   // In between: on the cone, between the stuck and the frictionless points (§3.1).
   for (double mu : {0.05, 0.2, 0.48}) {
     const Solution s = solve_frictional_edge(w, peg, mu, previous);
     ASSERT_EQ(s.status, Status::converged) << s.message;
     EXPECT_LE(std::abs(*s.edge_force), mu * *s.normal_force * (1 + 1e-9));
-    const double z = s.contact_point.z();
-    EXPECT_GE(z, std::min(previous.z(), free.contact_point.z()) - 1e-12);
-    EXPECT_LE(z, std::max(previous.z(), free.contact_point.z()) + 1e-12);
+    const double z = s.contact_point_W.z();
+    EXPECT_GE(z, std::min(previous.z(), free.contact_point_W.z()) - 1e-12);
+    EXPECT_LE(z, std::max(previous.z(), free.contact_point_W.z()) + 1e-12);
   }
 }
 
@@ -160,9 +160,9 @@ TEST(Invariance, RigidMotionOfTheSceneRotatesEveryOutput) {
   const Solution b = solve_edge(w2, peg2);
   ASSERT_EQ(b.status, Status::converged);
   EXPECT_NEAR(b.arc_length, a.arc_length, 1e-9);
-  EXPECT_LT((b.contact_point - (Q * a.contact_point + t)).norm(), 1e-9);
-  EXPECT_LT((b.force - Q * a.force).norm(), 1e-6 * a.force_magnitude);
-  EXPECT_LT((b.moment - Q * a.moment).norm(), 1e-6 * a.moment.norm());
+  EXPECT_LT((b.contact_point_W - (Q * a.contact_point_W + t)).norm(), 1e-9);
+  EXPECT_LT((b.force_W - Q * a.force_W).norm(), 1e-6 * a.force_magnitude);
+  EXPECT_LT((b.moment_W - Q * a.moment_W).norm(), 1e-6 * a.moment_W.norm());
   EXPECT_LT((b.whisker_frame.force - a.whisker_frame.force).norm(), 1e-6 * a.force_magnitude);
   EXPECT_NEAR(b.whisker_frame.MD, a.whisker_frame.MD, 1e-6);
 }

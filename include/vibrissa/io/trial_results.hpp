@@ -12,9 +12,17 @@
 
 namespace vibrissa::io {
 
+/// One numeric column of the table and its units as frames.h5 states them ("m", "N m", "deg", "1", ...).
+struct NumericColumn {
+  std::string name;
+  std::vector<double> values;
+  std::string units;  ///< SI unless the name says otherwise (FD_deg: "deg")
+};
+
 struct ResultTable {
-  std::vector<std::pair<std::string, std::vector<double>>> numeric;  ///< SI units unless the name says so
-  std::vector<std::pair<std::string, std::vector<std::string>>> text;  ///< status columns
+  std::vector<NumericColumn> numeric;
+  /// Solver status columns by name: Status names or "not_in_contact" (text in CSV and Python, codes in frames.h5).
+  std::vector<std::pair<std::string, std::vector<std::string>>> text;
 };
 
 /// Columns: time, contact, period, period_edge, theta, phi, zeta (filtered, used), then per mode

@@ -70,7 +70,7 @@ struct BaseWrenchRoot {
   double arc_length = 0.0;       ///< s [m]
   double force_magnitude = 0.0;  ///< f [N]
   double angle = 0.0;            ///< zeta = atan2(F_z, F_y) of the loaded link [rad]
-  Eigen::Vector3d contact_point = Eigen::Vector3d::Zero();  ///< world [m]
+  Eigen::Vector3d contact_point_W = Eigen::Vector3d::Zero();  ///< [m]
   double chi2 = 0.0;             ///< whitened squared residual
   LoadState state;               ///< the fitted unknowns
 };

@@ -65,17 +65,17 @@ struct Solution {
   double force_magnitude = 0.0;  ///< |F| [N]
   double arc_length = 0.0;       ///< s_applied [m]
   double angle = 0.0;            ///< force-mode angle of F (docs/conventions.md, "Loads and signs") [rad]
-  Eigen::Vector3d contact_point = Eigen::Vector3d::Zero();  ///< [m], world
+  Eigen::Vector3d contact_point_W = Eigen::Vector3d::Zero();  ///< [m]
   /// Force the whisker transmits to the follicle: the contact force, world [N] (as the published model).
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d force_W = Eigen::Vector3d::Zero();
   /// Moment of the contact force about the base, world [N·m].
-  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  Eigen::Vector3d moment_W = Eigen::Vector3d::Zero();
   WhiskerFrameSignals whisker_frame;
   std::optional<double> normal_force;  ///< component of F normal to the edge [N] (edge modes)
   std::optional<double> edge_force;    ///< component of F along the edge direction [N] (edge modes)
   double residual = 0.0;               ///< final residual [m]
   int iterations = 0;
-  std::vector<Eigen::Vector3d> shape;  ///< deflected nodes, base to tip, world [m]
+  std::vector<Eigen::Vector3d> shape_W;  ///< deflected nodes, base to tip [m]
   std::optional<double> other_root_arc_length;  ///< another root exists at this arc length [m]
   /// Every distinct root the solve found, by arc length (point mode with a hint or find_other_roots).
   std::vector<Root> roots;

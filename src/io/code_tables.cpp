@@ -1,0 +1,39 @@
+#include "code_tables.hpp"
+
+#include <stdexcept>
+
+namespace vibrissa::io {
+
+namespace {
+
+template <class Enum>
+std::string table(std::initializer_list<Enum> values, std::string prefix = {}) {
+  std::string out = std::move(prefix);
+  for (Enum v : values) {
+    if (!out.empty()) out += ", ";
+    out += std::to_string(static_cast<int>(v)) + " " + std::string(to_string(v));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string status_code_table() {
+  return table({Status::converged, Status::no_contact, Status::slipped_off, Status::not_converged},
+               std::to_string(kNotSolvedCode) + " not_in_contact");
+}
+
+std::string contact_state_code_table() {
+  return table({ContactState::free, ContactState::contact, ContactState::pushed_past});
+}
+
+std::int8_t status_code(std::string_view name, std::string_view field) {
+  if (name == "not_in_contact") return kNotSolvedCode;
+  try {
+    return static_cast<std::int8_t>(status_from_string(name));
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument(std::string(field) + ": unknown solver status '" + std::string(name) + "'");
+  }
+}
+
+}  // namespace vibrissa::io
