@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "vibrissa/core/limits.hpp"
+#include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/case_json.hpp"
 #include "vibrissa/io/json_input.hpp"
 
@@ -71,13 +72,11 @@ void register_solve(CLI::App& app) {
         if (!file) throw std::invalid_argument("--jsonl: cannot open '" + *jsonl_path + "'");
       }
       std::istream& in = *jsonl_path == "-" ? std::cin : file;
-      std::ofstream out_file;
-      if (!out_path->empty()) {
-        out_file.open(*out_path);
-        if (!out_file) throw std::invalid_argument("--output: cannot write '" + *out_path + "'");
-      }
-      std::ostream& out = out_path->empty() ? std::cout : out_file;
-      const std::size_t failed = solve_json_lines(in, out);
+      std::size_t failed = 0;
+      if (out_path->empty())
+        failed = solve_json_lines(in, std::cout);
+      else  // atomic like every output file (docs/formats.md, "Atomic outputs"), error lines included
+        io::write_text_atomically(*out_path, [&](std::ostream& out) { failed = solve_json_lines(in, out); });
       if (failed > 0) throw std::runtime_error(std::to_string(failed) + " line(s) of the JSON Lines batch failed");
       return;
     }
