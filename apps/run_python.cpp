@@ -25,11 +25,12 @@ std::string quote(const std::string& s) {
 std::filesystem::path figures_dir() {
   namespace fs = std::filesystem;
   if (const char* env_dir = std::getenv("VIBRISSA_FIGURES_DIR")) return env_dir;
-  // Installed: <prefix>/bin/vibrissa next to <prefix>/share/vibrissa/figures (cmake --install, the .deb).
+  // Installed: <prefix>/libexec/vibrissa/vibrissa-full (the full tool, apps/CMakeLists.txt) and
+  // <prefix>/share/vibrissa/figures (cmake --install, the .deb).
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
-    const fs::path installed = exe.parent_path().parent_path() / VIBRISSA_FIGURES_INSTALL_DIR;
+    const fs::path installed = exe.parent_path().parent_path().parent_path() / VIBRISSA_FIGURES_INSTALL_DIR;
     if (fs::exists(installed / "trial_figures.py", ec)) return installed;
   }
   return VIBRISSA_FIGURES_SOURCE_DIR;  // the build tree: the scripts in the source tree

@@ -98,3 +98,37 @@ def test_case_accessors():
     np.testing.assert_array_equal(case.load["previous_contact"], [0.018, 0.0031, 0.0002])
     assert case.whisker.properties.base == vibrissa.BaseJoint.rigid
     assert case.options.find_other_roots
+
+
+def test_jsonl_batch_equals_one_solve_per_case(cli, tmp_path):
+    """`vibrissa solve --jsonl`: one result line per case line, in order, each equal to `vibrissa solve` of that
+    case; blank lines skipped; a bad line gives an error object naming its line and field, the others still
+    solve, and the exit status is non-zero."""
+    names = sorted(CASES)
+    lines = [json.dumps(CASES[n]) for n in names]
+    bad = {"whisker": dict(PARABOLA, length=-1.0), "load": CASES["force"]["load"]}
+    text = "\n".join(lines[:2] + ["", "  ", json.dumps(bad), "{not json"] + lines[2:]) + "\n"
+    done = subprocess.run([cli, "solve", "--jsonl", "-"], input=text, capture_output=True, text=True)
+    assert done.returncode == 1
+    assert "2 line(s) of the JSON Lines batch failed" in done.stderr
+    out = [json.loads(line) for line in done.stdout.splitlines()]
+    assert len(out) == len(names) + 2
+    assert out[2] == {"line": 5, "error": "whisker.length must be positive, got -1"}
+    assert out[3]["line"] == 6 and out[3]["error"].startswith("line 6: not valid JSON")
+    solved = out[:2] + out[4:]
+    for name, result in zip(names, solved):
+        case_path = tmp_path / f"{name}.json"
+        case_path.write_text(json.dumps(CASES[name]))
+        assert result == run_cli(cli, case_path, tmp_path / f"{name}.out.json"), name
+
+    good = tmp_path / "good.jsonl"
+    good.write_text("\n".join(lines) + "\n")
+    out_path = tmp_path / "good.out.jsonl"
+    done = subprocess.run([cli, "solve", "--jsonl", str(good), "-o", str(out_path)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert [json.loads(line) for line in out_path.read_text().splitlines()] == solved
+
+    both = subprocess.run([cli, "solve", str(good), "--jsonl", str(good)], capture_output=True, text=True)
+    neither = subprocess.run([cli, "solve"], capture_output=True, text=True)
+    assert both.returncode != 0 and "excludes" in both.stderr
+    assert neither.returncode != 0 and "CASE or --jsonl is required" in neither.stderr

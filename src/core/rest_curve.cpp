@@ -3,6 +3,7 @@
 #include "vibrissa/core/cubic_spline.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -11,18 +12,6 @@
 
 namespace vibrissa {
 namespace {
-
-// 5-point Gauss-Legendre on [a, b] of |dc|.
-double speed_integral(const std::function<Eigen::Vector3d(double)>& dc, double a, double b) {
-  static constexpr double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
-                                  0.9061798459386640};
-  static constexpr double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
-                                  0.2369268850561891, 0.2369268850561891};
-  const double half = 0.5 * (b - a), mid = 0.5 * (a + b);
-  double sum = 0.0;
-  for (int i = 0; i < 5; ++i) sum += w[i] * dc(mid + half * x[i]).norm();
-  return half * sum;
-}
 
 // Clamped cubic spline through (t_i, y_i) with end slopes d0, dn: second derivatives m_i.
 std::vector<double> clamped_spline_moments(const std::vector<double>& t, const std::vector<double>& y, double d0,
@@ -72,39 +61,6 @@ double end_slope(const std::vector<double>& t, const std::vector<double>& y, boo
 }
 
 }  // namespace
-
-std::vector<Eigen::Vector3d> resample_by_arc_length(const std::function<Eigen::Vector3d(double)>& c,
-                                                    const std::function<Eigen::Vector3d(double)>& dc,
-                                                    double t_end, int links, double* total_length) {
-  const int panels = std::max(400, 40 * links);
-  std::vector<double> t(static_cast<std::size_t>(panels) + 1), cum(t.size(), 0.0);
-  for (int i = 0; i <= panels; ++i) t[i] = t_end * i / panels;
-  for (int i = 0; i < panels; ++i) cum[i + 1] = cum[i] + speed_integral(dc, t[i], t[i + 1]);
-  const double length = (total_length && *total_length > 0.0) ? *total_length : cum.back();
-  if (length > cum.back() * (1.0 + 1e-12)) throw std::logic_error("resample_by_arc_length: curve too short");
-  if (total_length) *total_length = length;
-
-  std::vector<Eigen::Vector3d> nodes(static_cast<std::size_t>(links) + 1);
-  nodes[0] = c(0.0);
-  for (int i = 1; i <= links; ++i) {
-    const double s = length * i / links;
-    auto it = std::upper_bound(cum.begin(), cum.end(), s);
-    std::size_t p = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - cum.begin()) - 1);
-    p = std::min(p, static_cast<std::size_t>(panels - 1));
-    const double frac = (s - cum[p]) / std::max(cum[p + 1] - cum[p], 1e-300);
-    double tt = t[p] + frac * (t[p + 1] - t[p]);
-    for (int iter = 0; iter < 8; ++iter) {  // Newton on arc length within the panel
-      const double f = cum[p] + speed_integral(dc, t[p], tt) - s;
-      const double speed = dc(tt).norm();
-      if (speed <= 0.0) break;
-      const double step = f / speed;
-      tt -= step;
-      if (std::abs(step) < 1e-15 * std::max(1.0, std::abs(tt))) break;
-    }
-    nodes[static_cast<std::size_t>(i)] = c(tt);
-  }
-  return nodes;
-}
 
 std::vector<Eigen::Vector3d> resample_points(const std::vector<Eigen::Vector3d>& points, int links,
                                              Eigen::Vector3d* tangent0) {

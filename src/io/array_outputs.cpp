@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <ostream>
 #include <stdexcept>
 
@@ -139,13 +140,26 @@ void print_pitch_summary_csv(const ArrayResult& r, std::ostream& out) {
 void write_array_outputs(const ArrayResult& result, const SimulationConfig& config, const nlohmann::json& config_json,
                          const std::filesystem::path& dir, const ArrayOutputOptions& options) {
   std::filesystem::create_directories(dir);
-  StagedFiles files;
-  files.stage(dir / "array.h5", [&](const std::string& tmp) { create_array_h5(result, config, tmp); });
-  if (options.csv) files.stage(dir / "array.csv", [&](const std::string& tmp) { create_array_csv(result, tmp); });
-  files.stage_text(dir / "pitch_summary.csv", [&](std::ostream& out) { print_pitch_summary_csv(result, out); });
-  stage_json_file(files, dir / "config.json", config_json);
-  stage_json_file(files, dir / "summary.json", array_summary_json(result, config));
+  // The serial tail after the parallel simulation, overlapped: array.h5 is written on a second thread (the
+  // only thread in HDF5, which Debian builds without thread safety) while this one writes the text outputs.
+  // All are renamed together once every one is written, array.h5 first, as when they were written in turn.
+  StagedFiles h5_files, files;
+  std::future<void> h5 = std::async(std::launch::async, [&] {
+    h5_files.stage(dir / "array.h5", [&](const std::string& tmp) { create_array_h5(result, config, tmp); });
+  });
+  try {
+    if (options.csv)
+      files.stage(dir / "array.csv", [&](const std::string& tmp) { create_array_csv(result, tmp); });
+    files.stage_text(dir / "pitch_summary.csv", [&](std::ostream& out) { print_pitch_summary_csv(result, out); });
+    stage_json_file(files, dir / "config.json", config_json);
+    stage_json_file(files, dir / "summary.json", array_summary_json(result, config));
+  } catch (...) {
+    h5.wait();  // h5_files must outlive its writer
+    throw;
+  }
+  h5.get();  // rethrows the HDF5 writer's exception
   remove_figures(dir, kArrayFigures);
+  h5_files.commit();
   files.commit();
 }
 
