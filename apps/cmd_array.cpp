@@ -118,12 +118,13 @@ void register_array(CLI::App& app) {
         if (a->figure_dpi > 0) args.insert(args.end(), {"--dpi", std::to_string(a->figure_dpi)});
         return args;
       };
-      run_figure_script("array_traces.py", with_dpi({h5, (out / io::kArrayTracesFigure).string()}));
+      std::vector<FigureScript> scripts = {{"array_traces.py", with_dpi({h5, (out / io::kArrayTracesFigure).string()})}};
       std::vector<std::string> anim = {h5, (out / (a->gif ? io::kArrayAnimationGif : io::kArrayAnimationMp4)).string()};
       if (a->fps > 0.0) anim.insert(anim.end(), {"--fps", std::to_string(a->fps)});
-      run_figure_script("array_animation.py", with_dpi(anim));
+      scripts.push_back({"array_animation.py", with_dpi(anim)});
       if (config.pitches.size() > 1)
-        run_figure_script("array_pitch_sweep.py", with_dpi({h5, (out / io::kArrayPitchSweepFigure).string()}));
+        scripts.push_back({"array_pitch_sweep.py", with_dpi({h5, (out / io::kArrayPitchSweepFigure).string()})});
+      run_figure_scripts(scripts);  // side by side (separate Python processes); the animation takes longest
     }
     std::cout << "wrote " << out.string() << "/{array.h5, summary.json, pitch_summary.csv"
               << (a->csv ? ", array.csv" : "") << (a->no_figures ? "" : ", figures") << "}\n";

@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <sstream>
 
@@ -50,6 +51,13 @@ int run_figure_script(const std::string& script, const std::vector<std::string>&
   const int rc = std::system(cmd.str().c_str());
   if (rc != 0) std::cerr << "vibrissa: warning: figure script " << script << " failed (exit " << rc << ")\n";
   return rc;
+}
+
+void run_figure_scripts(const std::vector<FigureScript>& scripts) {
+  std::vector<std::future<int>> running;
+  for (const FigureScript& f : scripts)
+    running.push_back(std::async(std::launch::async, [&f] { return run_figure_script(f.script, f.args); }));
+  for (auto& r : running) r.get();
 }
 
 }  // namespace vibrissa::cli

@@ -122,8 +122,8 @@ TEST(Elastica3D, HintedPointModeReturnsTheLoadJustPastARestNode) {
     ASSERT_EQ(s.status, Status::converged);
     EXPECT_NEAR(s.arc_length, s_made, 1e-10 * w.length());
     EXPECT_NEAR(s.force_magnitude, f, 1e-8 * f);
-    expect_close(s.force, forward.force, 1e-8, "force");
-    expect_close(s.contact_point, forward.contact_point, 1e-9, "contact");
+    expect_close(s.force_W, forward.force_W, 1e-8, "force");
+    expect_close(s.contact_point_W, forward.contact_point_W, 1e-9, "contact");
     const double s_elastica = c["elastica3d"]["arc_length"];
     bool neighbour = false, elastica = false;
     for (const Root& r : s.roots) {

@@ -1,0 +1,17 @@
+# ctest: the `vibrissa` launcher must not depend on HDF5 or matio (nor what they pull: curl, crypto) (apps/CMakeLists.txt), so
+# that a solve process does not map and relocate them. Run: cmake -DEXE=<path> -P launcher_links.cmake
+execute_process(COMMAND readelf -d ${EXE} OUTPUT_VARIABLE dynamic RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "readelf -d ${EXE} failed (${rc})")
+endif()
+string(REGEX MATCHALL "NEEDED\\)[^\n]*" needed "${dynamic}")
+if(NOT needed)
+  message(FATAL_ERROR "no NEEDED entries in ${EXE}: not a dynamically linked executable?")
+endif()
+foreach(entry IN LISTS needed)
+  if(entry MATCHES "hdf5|matio|curl|crypto")
+    message(FATAL_ERROR "${EXE} depends on a library only vibrissa-full should load: ${entry}")
+  endif()
+endforeach()
+list(LENGTH needed n)
+message(STATUS "${EXE}: ${n} shared libraries, none of HDF5/matio")
