@@ -76,6 +76,14 @@ template <int K>
 inline Dual<K> cos(const Dual<K>& a) { return chain(a, std::cos(a.v), -std::sin(a.v)); }
 
 inline double value_of(double x) { return x; }
+/// Exactly zero, derivatives included.
+inline bool is_zero(double x) { return x == 0.0; }
+template <int K>
+inline bool is_zero(const Dual<K>& x) {
+  for (int i = 0; i < K; ++i)
+    if (x.d[i] != 0.0) return false;
+  return x.v == 0.0;
+}
 template <int K>
 inline double value_of(const Dual<K>& x) { return x.v; }
 
