@@ -4,8 +4,8 @@
 // std::array<Dual<3>, M> (its residual and exact Jacobian in one pass) and on doubles (the residual alone,
 // for trial points).
 // Pure Newton (Gauss-Newton when M != 3: minimum-norm least-squares) steps are tried first (quadratic
-// convergence near the root), then halves of them (backtracking, each trial one forward evaluation); damping
-// grows only when the Newton direction fails, which globalises the method for thin, compliant tips. When M != 3 a fit also converges at a stationary point of the squares
+// convergence near the root); damping grows only when a step fails to reduce the residual, which globalises
+// the method for thin, compliant tips. When M != 3 a fit also converges at a stationary point of the squares
 // (|J^T r| <= tolerance * max|J|), since an over-determined fit need not reach zero residual.
 #include <algorithm>
 #include <array>
@@ -98,29 +98,18 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
     const Eigen::Vector3d g = J.transpose() * r;
     const double scale = std::max(A.diagonal().maxCoeff(), 1e-300);
     bool accepted = false;
-    // Backtracking first: the Newton (Gauss-Newton) step, then halves of it (each trial one forward
-    // evaluation); damping, growing tenfold, only if the Newton direction fails at 1/16 of its length.
-    Eigen::Vector3d newton;
-    if constexpr (M == 3) newton = -J.partialPivLu().solve(r);
-    else newton = -Eigen::MatrixXd(J).completeOrthogonalDecomposition().solve(Eigen::VectorXd(r));
-    double fraction = newton.allFinite() ? 1.0 : 0.0;
-    lambda = 0.0;
     for (int attempt = 0; attempt < 30 && !accepted; ++attempt) {
       Eigen::Vector3d step;
-      if (fraction > 0.0) {
-        step = fraction * newton;
+      if (lambda == 0.0) {
+        if constexpr (M == 3) step = -J.partialPivLu().solve(r);
+        else step = -Eigen::MatrixXd(J).completeOrthogonalDecomposition().solve(Eigen::VectorXd(r));
       } else {
-        if (lambda == 0.0) lambda = 1e-6 * scale;
         Eigen::Matrix3d A_damped = A;
         A_damped.diagonal() += lambda * (A.diagonal().cwiseMax(1e-12 * scale));
         step = -A_damped.ldlt().solve(g);
       }
-      auto reject = [&] {
-        if (fraction > 0.0) fraction = fraction > 1.0 / 16.0 ? 0.5 * fraction : 0.0;
-        else lambda *= 10.0;
-      };
       if (!step.allFinite()) {
-        reject();
+        lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
         continue;
       }
       const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
@@ -136,9 +125,10 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
         r = r_new;
         cost = r.squaredNorm();
         accepted = true;
+        lambda = lambda < 1e-9 * scale ? 0.0 : lambda / 10.0;
         if (tiny) break;
       } else {
-        reject();
+        lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
       }
     }
     if (!accepted) break;  // stalled: no descent direction reduces the residual

@@ -151,7 +151,7 @@ TEST(ChainJacobian, AnalyticMatchesCentralDifferences) {
     }
 }
 
-TEST(ChainJacobian, SolverDispatchUsesTheSameNumbers) {
+TEST(ChainJacobian, SolverDispatchIsTheAnalyticJacobian) {
   const Whisker w = Whisker::from_parabola(0.04, 12.0, WhiskerProperties{});
   const V3<D> F(D(0.0), D::variable(1e-4, 0), D::variable(3e-5, 1)), C(D(0.0), D(0.0), D(0.0));
   const D s = D::variable(0.025, 2);
@@ -160,6 +160,27 @@ TEST(ChainJacobian, SolverDispatchUsesTheSameNumbers) {
   EXPECT_EQ(a.jacobian, b.jacobian);
   const auto v = deflect_for_solve<double>(w, V3<double>(0.0, 1e-4, 3e-5), V3<double>(0, 0, 0), 0.025);
   EXPECT_EQ(v.p_contact_B.x, a.value[0]);
+}
+
+// The solvers compare residuals evaluated on doubles (trial points) with ones evaluated on Dual<3>
+// (accepted points): the values must be the same numbers, division included.
+TEST(Dual, ValuesAreComputedExactlyAsOnDoubles) {
+  const double a = 0.3, b = 0.7, k = 0.7;
+  EXPECT_NE(a * (1.0 / b), a / b);  // the case that needs care
+  EXPECT_EQ((D::variable(a, 0) / D::variable(b, 1)).v, a / b);
+  EXPECT_EQ((D::variable(a, 0) / k).v, a / k);
+  const D q = D::variable(a, 0) / D::variable(b, 1);
+  EXPECT_DOUBLE_EQ(q.d[0], 1.0 / b);
+  EXPECT_DOUBLE_EQ(q.d[1], -a / (b * b));
+  const Whisker w = Whisker::from_parabola(0.04, 12.0, WhiskerProperties{});
+  const V3<D> F(D(0.0), D::variable(2e-4, 0), D::variable(-1e-4, 1)), C(D(0.0), D(0.0), D(0.0));
+  const D s = D::variable(0.031, 2);
+  const auto dual = flatten(deflect_analytic(w, F, C, s));
+  const auto plain = deflect<double>(w, V3<double>(0.0, 2e-4, -1e-4), V3<double>(0, 0, 0), 0.031);
+  const double p[12] = {plain.p_contact_B.x, plain.p_contact_B.y, plain.p_contact_B.z, plain.force_B.x,
+                        plain.force_B.y,     plain.force_B.z,     plain.couple_B.x,    plain.couple_B.y,
+                        plain.couple_B.z,    plain.tangent_B.x,   plain.tangent_B.y,   plain.tangent_B.z};
+  for (int i = 0; i < 12; ++i) EXPECT_EQ(dual.value[i], p[i]) << "output " << i;
 }
 
 // The Rodrigues coefficients switch from series to closed form at t^2 = rodrigues_series_limit: both sides

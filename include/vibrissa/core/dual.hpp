@@ -46,13 +46,19 @@ struct Dual {
     return r;
   }
   friend Dual operator*(const Dual& a, double k) { return k * a; }
+  // Values are computed exactly as on doubles (a / b, not a * (1 / b)), so that a residual evaluated on
+  // doubles and on Dual<3> at the same point compares equal (the solvers mix the two).
   friend Dual operator/(const Dual& a, const Dual& b) {
     const double inv = 1.0 / b.v;
-    Dual r(a.v * inv);
+    Dual r(a.v / b.v);
     for (int i = 0; i < K; ++i) r.d[i] = (a.d[i] - r.v * b.d[i]) * inv;
     return r;
   }
-  friend Dual operator/(const Dual& a, double k) { return (1.0 / k) * a; }
+  friend Dual operator/(const Dual& a, double k) {
+    Dual r(a.v / k);
+    for (int i = 0; i < K; ++i) r.d[i] = a.d[i] / k;
+    return r;
+  }
   Dual& operator+=(const Dual& b) { return *this = *this + b; }
   Dual& operator-=(const Dual& b) { return *this = *this - b; }
   Dual& operator*=(const Dual& b) { return *this = *this * b; }
