@@ -1,10 +1,12 @@
-// Speed of the engine at N = 100 (issue 2, item 11): forward evaluation, contact-point and edge solves,
-// cold and warm. Run: build/bench/bench_solve --benchmark_min_time=0.5
+// Speed of the engine at N = 100 (issue 2, item 11; issue 13): forward evaluation, its Jacobian (Dual<3>
+// reference and analytic), contact-point and edge solves, cold and warm; "iterations" counts accepted LM steps.
+// Issue 13's targets are ratios to BM_Forward from one run (docs/performance.md, "Engine"):
+//   build/bench/bench_solve --benchmark_format=json --benchmark_repetitions=5 | bench/ratios.py
 #include <benchmark/benchmark.h>
 
 #include <numbers>
 
-#include "vibrissa/core/chain.hpp"
+#include "vibrissa/core/chain_jacobian.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace {
@@ -51,10 +53,22 @@ void BM_ForwardWithJacobian(benchmark::State& state) {
 }
 BENCHMARK(BM_ForwardWithJacobian);
 
+void BM_ForwardAnalyticJacobian(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  using D = Dual<3>;
+  for (auto _ : state) {
+    auto c = deflect_analytic(w, V3<D>(D(0.0), D::variable(1e-4, 0), D::variable(3e-5, 1)),
+                              V3<D>(D(0.0), D(0.0), D(0.0)), D::variable(0.025, 2));
+    benchmark::DoNotOptimize(c);
+  }
+}
+BENCHMARK(BM_ForwardAnalyticJacobian);
+
 void BM_EdgeCold(benchmark::State& state) {
   const Whisker w = bench_whisker();
   const Edge peg = bench_peg();
   for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, peg, std::nullopt, fast()));
+  state.counters["iterations"] = solve_edge(w, peg, std::nullopt, fast()).iterations;
 }
 BENCHMARK(BM_EdgeCold);
 
@@ -65,6 +79,7 @@ void BM_EdgeWarm(benchmark::State& state) {
   prev.theta -= 0.05 * std::numbers::pi / 180.0;
   const Solution before = solve_edge(w, prev, bench_peg(), std::nullopt, fast());
   for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, fast(), &before.state));
+  state.counters["iterations"] = solve_edge(w, bench_peg(), std::nullopt, fast(), &before.state).iterations;
 }
 BENCHMARK(BM_EdgeWarm);
 
@@ -72,6 +87,7 @@ void BM_PointCold(benchmark::State& state) {
   const Whisker w = bench_whisker();
   const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
   for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, fast()));
+  state.counters["iterations"] = solve_point(w, target, std::nullopt, fast()).iterations;
 }
 BENCHMARK(BM_PointCold);
 
@@ -80,6 +96,7 @@ void BM_PointWarm(benchmark::State& state) {
   const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
   const Solution near = solve_point(w, target + Eigen::Vector3d(0, 0, 2e-5), std::nullopt, fast());
   for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, fast(), &near.state));
+  state.counters["iterations"] = solve_point(w, target, std::nullopt, fast(), &near.state).iterations;
 }
 BENCHMARK(BM_PointWarm);
 
@@ -89,6 +106,7 @@ void BM_FrictionalEdgeWarm(benchmark::State& state) {
   const Eigen::Vector3d previous = free.contact_point_W - Eigen::Vector3d(0, 0, 2e-3);
   for (auto _ : state)
     benchmark::DoNotOptimize(solve_frictional_edge(w, bench_peg(), 0.48, previous, fast(), &free.state));
+  state.counters["iterations"] = solve_frictional_edge(w, bench_peg(), 0.48, previous, fast(), &free.state).iterations;
 }
 BENCHMARK(BM_FrictionalEdgeWarm);
 

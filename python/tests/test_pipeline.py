@@ -242,7 +242,7 @@ def test_ctrl_c_stops_simulate_array_within_half_a_second(with_progress):
 @pytest.mark.parametrize("with_progress", [False, True])
 def test_ctrl_c_stops_synthesis_and_analysis_within_half_a_second(with_progress):
     assert interrupt(lambda p: vibrissa.synthesize_trial(duration=60.0, progress=p), 0.3, with_progress) < 0.5
-    long_trial = vibrissa.synthesize_trial(duration=4.0)
+    long_trial = vibrissa.synthesize_trial(duration=10.0)
     assert interrupt(lambda p: vibrissa.analyze_trial(long_trial, mu=0.48, progress=p), 0.05, with_progress) < 0.5
 
 

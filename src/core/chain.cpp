@@ -3,10 +3,13 @@
 namespace vibrissa {
 
 Eigen::Matrix3d joint_rotation_matrix(const Eigen::Vector3d& omega) {
-  V3<double> cols[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  apply_joint_rotation(V3<double>(omega), cols, 3);
+  const V3<double> w(omega);
+  double a, b;
+  detail::rodrigues_coefficients(dot(w, w), a, b);
+  const Mat3<double> E = detail::rotation_matrix(w, a, b);
   Eigen::Matrix3d R;
-  for (int i = 0; i < 3; ++i) R.col(i) = to_eigen(cols[i]);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R(i, j) = E.m[3 * i + j];
   return R;
 }
 

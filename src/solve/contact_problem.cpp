@@ -104,7 +104,8 @@ void fill_solution(const Whisker& w, const Placement& X, const LoadState& state,
   }
   out.shape_W.clear();
   if (options.compute_shape) {
-    shape_B(w, state, ws);
+    if (w.properties().scheme == Scheme::paper) shape_B(w, state, ws);
+    else deflected_nodes_B(w, omega.data(), ws.nodes_B);  // the joint rotations of the walk above
     out.shape_W.reserve(ws.nodes_B.size());
     for (const auto& p : ws.nodes_B) out.shape_W.push_back(X.to_world(p));
   }

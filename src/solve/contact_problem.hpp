@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 
 #include "levenberg_marquardt.hpp"
-#include "vibrissa/core/chain.hpp"
+#include "vibrissa/core/chain_jacobian.hpp"
 #include "vibrissa/solve/options.hpp"
 #include "vibrissa/solve/solution.hpp"
 
@@ -32,7 +32,7 @@ LoadState state_from_unknowns(const Eigen::Vector3d& u, const Scales& sc);
 template <class S>
 ContactKinematics<S> contact_at(const Whisker& w, const Scales& sc, const std::array<S, 3>& u) {
   const V3<S> force(S(0.0), sc.force * u[0], sc.force * u[1]);
-  return deflect<S>(w, force, V3<S>(S(0.0), S(0.0), S(0.0)), sc.length * u[2]);
+  return deflect_for_solve<S>(w, force, V3<S>(S(0.0), S(0.0), S(0.0)), sc.length * u[2]);
 }
 
 /// The force-mode angle of a load (docs/conventions.md, "Loads and signs"): second-order scheme,

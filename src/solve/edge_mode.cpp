@@ -79,7 +79,7 @@ Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std:
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * sc.length;
   detail::check_contact_side(w, X, approach_W, out);
-  if (out.status == Status::converged && options.find_other_roots) {
+  if (out.status == Status::converged && options.find_other_roots && !warm) {  // warm frames do not probe
     const double s_star = a.lm.u[2];
     for (double s_try : {0.25, 0.5, 0.75, 1.0}) {
       if (std::abs(s_try - s_star) < 0.05) continue;

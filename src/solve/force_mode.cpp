@@ -53,7 +53,7 @@ Solution solve_dead_load(const Whisker& w, const Placement& X, const Eigen::Vect
     auto residual = [&](const auto& u) {
       using S = std::decay_t<decltype(u[0])>;
       const V3<S> F(u[0] * sc.force, u[1] * sc.force, u[2] * sc.force);
-      const auto c = deflect<S>(w, F, V3<S>(S(0.0), S(0.0), S(0.0)), S(arc_length));
+      const auto c = deflect_for_solve<S>(w, F, V3<S>(S(0.0), S(0.0), S(0.0)), S(arc_length));
       return std::array<S, 3>{c.force_B.x / sc.force - goal.x(), c.force_B.y / sc.force - goal.y(),
                               c.force_B.z / sc.force - goal.z()};
     };

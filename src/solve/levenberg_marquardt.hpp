@@ -1,7 +1,8 @@
 #pragma once
 // Levenberg-Marquardt over three unknowns: the square 3x3 systems of every contact solve, and (for the
 // base-wrench inverse) M x 3 least squares. The residual is a generic functor evaluated on Dual<3>, returning
-// std::array<Dual<3>, M>, so each trial point yields the residual and its exact Jacobian in one pass.
+// std::array<Dual<3>, M> (its residual and exact Jacobian in one pass) and on doubles (the residual alone,
+// for trial points).
 // Pure Newton (Gauss-Newton when M != 3: minimum-norm least-squares) steps are tried first (quadratic
 // convergence near the root); damping grows only when a step fails to reduce the residual, which globalises
 // the method for thin, compliant tips. When M != 3 a fit also converges at a stationary point of the squares
@@ -48,6 +49,13 @@ void evaluate_with_jacobian(Residual& f, const Eigen::Vector3d& u, Eigen::Matrix
     r[i] = y[static_cast<std::size_t>(i)].v;
     for (int j = 0; j < 3; ++j) J(i, j) = y[static_cast<std::size_t>(i)].d[static_cast<std::size_t>(j)];
   }
+}
+
+/// The residual alone (doubles: one forward evaluation, no Jacobian), for trial points.
+template <class Residual, int M>
+void evaluate(Residual& f, const Eigen::Vector3d& u, Eigen::Matrix<double, M, 1>& r) {
+  const std::array<double, M> y = f(std::array<double, 3>{u[0], u[1], u[2]});
+  for (int i = 0; i < M; ++i) r[i] = y[static_cast<std::size_t>(i)];
 }
 
 template <class Residual>
@@ -105,16 +113,17 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
         continue;
       }
       const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
+      // Trial points cost one forward evaluation; the Jacobian is formed only where a step is accepted and
+      // the residual is not yet within tolerance (a square system's converged point needs none).
       Vec r_new;
-      Jac J_new;
-      evaluate_with_jacobian(f, u_new, r_new, J_new);
+      evaluate(f, u_new, r_new);
       const double cost_new = r_new.squaredNorm();
       if (r_new.allFinite() && cost_new < cost) {
         const bool tiny = (u_new - u).cwiseAbs().maxCoeff() <= 1e-16 * std::max(1.0, u.cwiseAbs().maxCoeff());
         u = u_new;
+        if (M != 3 || r_new.cwiseAbs().maxCoeff() > tolerance) evaluate_with_jacobian(f, u, r_new, J);
         r = r_new;
-        J = J_new;
-        cost = cost_new;
+        cost = r.squaredNorm();
         accepted = true;
         lambda = lambda < 1e-9 * scale ? 0.0 : lambda / 10.0;
         if (tiny) break;

@@ -137,7 +137,7 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
   }
   PointAttempt a = attempt_point(w, sc, target_B, u0, options);
   std::vector<Root> roots;
-  if ((hint && !warm) || options.find_other_roots) {
+  if (!warm && (hint || options.find_other_roots)) {  // a warm frame keeps its root: no probing (issue 13)
     // Scan: start near the hint and all along the whisker, each start with the force that the linearised
     // model needs there; keep every distinct root, and with a hint the one nearest it.
     const double h = hint ? *hint / sc.length : a.lm.u[2];

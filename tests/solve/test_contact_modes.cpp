@@ -40,6 +40,24 @@ TEST(PointMode, RecoversTheForceModeLoad) {
   EXPECT_NEAR(sol.angle, 0.8, 1e-8);
 }
 
+TEST(PointMode, WarmFramesDoNotProbeForOtherRoots) {
+  // The same point as below, warm-started from the far root: that root, and no scan (issue 13).
+  const Whisker w = rat_whisker();
+  const Solution far = solve_force(w, 1e-4, 0.030, 0.3);
+  SolveOptions probing;
+  probing.find_other_roots = true;
+  const Solution warm = solve_point(w, far.contact_point, std::nullopt, probing, &far.state);
+  const Solution plain = solve_point(w, far.contact_point, std::nullopt, SolveOptions{}, &far.state);
+  ASSERT_EQ(warm.status, Status::converged);
+  EXPECT_NEAR(warm.arc_length, 0.030, 1e-9);
+  EXPECT_TRUE(warm.roots.empty());
+  EXPECT_FALSE(warm.other_root_arc_length.has_value());
+  EXPECT_EQ(warm.iterations, plain.iterations);
+  EXPECT_EQ(warm.arc_length, plain.arc_length);
+  const Solution cold = solve_point(w, far.contact_point, std::nullopt, probing);
+  EXPECT_TRUE(cold.other_root_arc_length.has_value());  // the cold solve does scan
+}
+
 TEST(PointMode, ReportsAndSelectsAnotherRoot) {
   // A contact nearer the base with a smaller force can reach the same point (issue 2, item 6).
   const Whisker w = rat_whisker();

@@ -22,14 +22,6 @@
 
 namespace vibrissa {
 
-/// Applies the rotation exp(omega) of a second-order joint to the vectors v[0..count).
-template <class S>
-inline void apply_joint_rotation(const V3<S>& omega, V3<S>* v, int count) {
-  S a, b;
-  detail::rodrigues_coefficients(dot(omega, omega), a, b);
-  for (int i = 0; i < count; ++i) v[i] = detail::rotate(omega, a, b, v[i]);
-}
-
 /// Deflects the whisker under a follower force `force_L` and couple `couple_L` (components in the frame of
 /// the loaded link) at arc length s. If `omega_out` is given it receives the rotation vector of every
 /// joint (size >= links; unloaded joints are zero) for shape reconstruction.
@@ -46,13 +38,20 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
   const auto& ell = w.link_lengths();
   const double base_extra = w.base_extra_compliance();
 
-  // v[0] = r (node j -> contact), v[1] = F, v[2] = C, v[3] = tangent of the loaded link.
+  // v[0] = r (node j -> contact), v[1] = F, v[2] = C, v[3] = tangent of the loaded link. Without a couple
+  // v[2] stays zero and is not rotated.
   V3<S> v[4] = {V3<S>(h, S(0.0), S(0.0)), force_L, couple_L, V3<S>(S(1.0), S(0.0), S(0.0))};
+  const bool couple = !(is_zero(couple_L.x) && is_zero(couple_L.y) && is_zero(couple_L.z));
   {  // load frame follows the smooth rest tangent at s (whisker.hpp)
     const Eigen::Vector3d& kappa = w.load_frame_curvature()[static_cast<std::size_t>(k)];
     const S offset = h - S(0.5 * ell[static_cast<std::size_t>(k)]);
     const V3<S> psi(offset * kappa.x(), offset * kappa.y(), offset * kappa.z());
-    apply_joint_rotation(psi, v + 1, 3);
+    S a, b;
+    detail::rodrigues_coefficients(dot(psi, psi), a, b);
+    const Mat3<S> E = detail::rotation_matrix(psi, a, b);
+    v[1] = E * v[1];
+    if (couple) v[2] = E * v[2];
+    v[3] = E * v[3];
   }
   if (omega_out)
     for (int j = k + 1; j < w.links(); ++j) omega_out[j].setZero();
@@ -60,13 +59,14 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
     const std::size_t u = static_cast<std::size_t>(j);
     // Joint weights: a force's moment falls linearly to zero at the load, a couple's does not, so on the
     // loaded joint they integrate over [s_k, s] with the trapezoid and the rectangle rule respectively.
+    const V3<S> rxF = cross(v[0], v[1]);
     V3<S> M;
     if (j == k) {
       const double base_w = w.loaded_joint_weight_base(j), slope = w.loaded_joint_weight_slope();
       const S wf = S(base_w) + slope * h, wc = S(base_w) + (slope > 0.0 ? h : S(0.0));
-      M = wf * cross(v[0], v[1]) + wc * v[2];
+      M = wf * rxF + wc * v[2];
     } else {
-      M = S(weight[u]) * (cross(v[0], v[1]) + v[2]);
+      M = S(weight[u]) * (rxF + v[2]);
     }
     // Split twist from bending in the joint's mid frame (rest half-rotation in the compliance matrix, the
     // elastic half-rotation by one predictor-corrector step): second order for curved, twisted rods.
@@ -74,19 +74,25 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
     const V3<S> predictor = mul(K, M);
     V3<S> omega = mul(K, M + S(0.5) * cross(predictor, M));
     if (j == 0 && base_extra > 0.0) {  // follicle spring in series (moment, not weighted)
-      const V3<S> Mb = cross(v[0], v[1]) + v[2];
+      const V3<S> Mb = rxF + v[2];
       omega.y += base_extra * Mb.y;
       omega.z += base_extra * Mb.z;
     }
     if (omega_out) omega_out[j] = Eigen::Vector3d(value_of(omega.x), value_of(omega.y), value_of(omega.z));
-    apply_joint_rotation(omega, v, 4);
-    for (auto& x : v) x = mul(Q[u], x);
+    // One matrix, the rest rotation after the elastic one, turns every carried vector (eq. (3)).
+    S a, b;
+    detail::rodrigues_coefficients(dot(omega, omega), a, b);
+    const Mat3<S> G = mul(Q[u], detail::rotation_matrix(omega, a, b));
+    v[0] = G * v[0];
+    v[1] = G * v[1];
+    if (couple) v[2] = G * v[2];
+    v[3] = G * v[3];
     if (j > 0) v[0].x += ell[u - 1];
   }
   return {v[0], v[1], v[2], v[3]};
 }
 
-/// Rotation matrix of a joint rotation vector (consistent with apply_joint_rotation).
+/// Rotation matrix exp([omega]x) of a joint rotation vector (the one deflect() applies).
 Eigen::Matrix3d joint_rotation_matrix(const Eigen::Vector3d& omega);
 
 /// Nodes of the deflected whisker in B (size N+1) from the joint rotations written by deflect() (second-order

@@ -46,13 +46,19 @@ struct Dual {
     return r;
   }
   friend Dual operator*(const Dual& a, double k) { return k * a; }
+  // Values are computed exactly as on doubles (a / b, not a * (1 / b)), so that a residual evaluated on
+  // doubles and on Dual<3> at the same point compares equal (the solvers mix the two).
   friend Dual operator/(const Dual& a, const Dual& b) {
     const double inv = 1.0 / b.v;
-    Dual r(a.v * inv);
+    Dual r(a.v / b.v);
     for (int i = 0; i < K; ++i) r.d[i] = (a.d[i] - r.v * b.d[i]) * inv;
     return r;
   }
-  friend Dual operator/(const Dual& a, double k) { return (1.0 / k) * a; }
+  friend Dual operator/(const Dual& a, double k) {
+    Dual r(a.v / k);
+    for (int i = 0; i < K; ++i) r.d[i] = a.d[i] / k;
+    return r;
+  }
   Dual& operator+=(const Dual& b) { return *this = *this + b; }
   Dual& operator-=(const Dual& b) { return *this = *this - b; }
   Dual& operator*=(const Dual& b) { return *this = *this * b; }
@@ -76,6 +82,14 @@ template <int K>
 inline Dual<K> cos(const Dual<K>& a) { return chain(a, std::cos(a.v), -std::sin(a.v)); }
 
 inline double value_of(double x) { return x; }
+/// Exactly zero, derivatives included.
+inline bool is_zero(double x) { return x == 0.0; }
+template <int K>
+inline bool is_zero(const Dual<K>& x) {
+  for (int i = 0; i < K; ++i)
+    if (x.d[i] != 0.0) return false;
+  return x.v == 0.0;
+}
 template <int K>
 inline double value_of(const Dual<K>& x) { return x.v; }
 

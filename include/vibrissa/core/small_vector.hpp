@@ -38,6 +38,25 @@ inline V3<S> mul(const Eigen::Matrix3d& R, const V3<S>& v) {
           R(2, 0) * v.x + R(2, 1) * v.y + R(2, 2) * v.z};
 }
 
+/// A 3x3 matrix templated on its scalar (row-major), for rotations built from templated angles.
+template <class S>
+struct Mat3 {
+  S m[9];
+  [[nodiscard]] V3<S> operator*(const V3<S>& v) const {
+    return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[3] * v.x + m[4] * v.y + m[5] * v.z,
+            m[6] * v.x + m[7] * v.y + m[8] * v.z};
+  }
+};
+
+/// Product of a constant (double) matrix with a templated one: Q R.
+template <class S>
+inline Mat3<S> mul(const Eigen::Matrix3d& Q, const Mat3<S>& R) {
+  Mat3<S> P;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) P.m[3 * i + j] = Q(i, 0) * R.m[j] + Q(i, 1) * R.m[3 + j] + Q(i, 2) * R.m[6 + j];
+  return P;
+}
+
 inline Eigen::Vector3d to_eigen(const V3<double>& v) { return {v.x, v.y, v.z}; }
 
 }  // namespace vibrissa
