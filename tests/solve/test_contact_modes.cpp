@@ -46,15 +46,15 @@ TEST(PointMode, WarmFramesDoNotProbeForOtherRoots) {
   const Solution far = solve_force(w, 1e-4, 0.030, 0.3);
   SolveOptions probing;
   probing.find_other_roots = true;
-  const Solution warm = solve_point(w, far.contact_point, std::nullopt, probing, &far.state);
-  const Solution plain = solve_point(w, far.contact_point, std::nullopt, SolveOptions{}, &far.state);
+  const Solution warm = solve_point(w, far.contact_point_W, std::nullopt, probing, &far.state);
+  const Solution plain = solve_point(w, far.contact_point_W, std::nullopt, SolveOptions{}, &far.state);
   ASSERT_EQ(warm.status, Status::converged);
   EXPECT_NEAR(warm.arc_length, 0.030, 1e-9);
   EXPECT_TRUE(warm.roots.empty());
   EXPECT_FALSE(warm.other_root_arc_length.has_value());
   EXPECT_EQ(warm.iterations, plain.iterations);
   EXPECT_EQ(warm.arc_length, plain.arc_length);
-  const Solution cold = solve_point(w, far.contact_point, std::nullopt, probing);
+  const Solution cold = solve_point(w, far.contact_point_W, std::nullopt, probing);
   EXPECT_TRUE(cold.other_root_arc_length.has_value());  // the cold solve does scan
 }
 

@@ -105,7 +105,7 @@ struct BaseWrenchResult {
 };
 
 /// Fits (s, f, zeta) to the base force `F_base_W` [N] and moment `M_base_W` [N·m] (world frame, moment about
-/// the base point): exactly Solution::force and Solution::moment of a solve at `X_WB`. Components outside
+/// the base point): exactly Solution::force_W and Solution::moment_W of a solve at `X_WB`. Components outside
 /// options.signals (after rotation into B) are ignored. All signals zero: status no_contact. `warm`, if
 /// given, is tried first; when its fit converges no scan is made (roots then holds that fit only).
 BaseWrenchResult solve_base_wrench(const Whisker& whisker, const Placement& X_WB, const Eigen::Vector3d& F_base_W,

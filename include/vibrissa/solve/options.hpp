@@ -8,7 +8,7 @@ namespace vibrissa {
 struct SolveOptions {
   double tolerance = 1e-12;       ///< contact residual to reach [m] (and the edge-parallel force, scaled alike)
   int max_iterations = 100;       ///< Levenberg-Marquardt iterations per attempt
-  bool compute_shape = true;      ///< fill Solution::shape (costs one extra O(N) pass)
+  bool compute_shape = true;      ///< fill Solution::shape_W (costs one extra O(N) pass)
   bool find_other_roots = false;  ///< probe for a second root and report it (cold solves only; costs extra solves)
 };
 
