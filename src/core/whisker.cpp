@@ -196,6 +196,14 @@ void Whisker::build(std::vector<Eigen::Vector3d> nodes_B, const WhiskerPropertie
     weight_load_base_[j] = 0.5 * left;
   }
   weight_load_slope_ = 0.5;
+  compliance_B_.resize(N);
+  weighted_compliance_B_.resize(N);
+  link_vector_B_.resize(N);
+  for (std::size_t j = 0; j < N; ++j) {
+    compliance_B_[j] = R_link_B_[j] * compliance_link_[j] * R_link_B_[j].transpose();
+    weighted_compliance_B_[j] = weight_[j] * compliance_B_[j];
+    link_vector_B_[j] = link_length_[j] * R_link_B_[j].col(0);
+  }
   if (props.scheme == Scheme::paper) {
     for (int d = 0; d < 3; ++d) {
       std::vector<double> c(N + 1);

@@ -24,7 +24,14 @@ namespace vibrissa {
 
 /// Deflects the whisker under a follower force `force_L` and couple `couple_L` (components in the frame of
 /// the loaded link) at arc length s. If `omega_out` is given it receives the rotation vector of every
-/// joint (size >= links; unloaded joints are zero) for shape reconstruction.
+/// joint in its link's frame (size >= links; unloaded joints are zero) for shape reconstruction.
+///
+/// The walk carries its vectors in the axes of B at rest ("rest axes"): a vector v_j in link j's frame is
+/// carried as R_j v_j, R_j the rest frame of link j in B. Because R_{j-1} Q_j = R_j, the turn of joint j,
+/// v_{j-1} = Q_j exp([omega_j]x) v_j, becomes y_{j-1} = exp([R_j omega_j]x) y_j: one rotation by the joint's
+/// rotation vector in rest axes, and the joint law (eqs. (1), (3)) holds there with the compliance
+/// R_j K_j R_j^T (cross products and rotations commute with R_j). No rest rotation is applied in the walk;
+/// at the base the rest axes are B's, so the carried vectors come out in B.
 template <class S>
 ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>& couple_L, const S& s,
                              Eigen::Vector3d* omega_out = nullptr) {
@@ -32,64 +39,77 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
   int k;
   double h0;
   w.locate(value_of(s), k, h0);
-  const S h = s - S(w.node_arc_lengths()[static_cast<std::size_t>(k)]);
-  const auto& weight = w.joint_weight();
-  const auto& Q = w.rest_joint_rotations();
-  const auto& ell = w.link_lengths();
+  const std::size_t uk = static_cast<std::size_t>(k);
+  const S h = s - S(w.node_arc_lengths()[uk]);
+  const auto& K_B = w.joint_compliance_B();
+  const auto& Kw_B = w.weighted_joint_compliance_B();
+  const auto& link_B = w.rest_link_vectors_B();
+  const auto& R_link = w.rest_link_frames_B();
   const double base_extra = w.base_extra_compliance();
 
-  // v[0] = r (node j -> contact), v[1] = F, v[2] = C, v[3] = tangent of the loaded link. Without a couple
-  // v[2] stays zero and is not rotated.
-  V3<S> v[4] = {V3<S>(h, S(0.0), S(0.0)), force_L, couple_L, V3<S>(S(1.0), S(0.0), S(0.0))};
+  // r (node j -> contact), F, C and the tangent of the loaded link, in rest axes. Without a couple C stays
+  // zero and is not turned.
   const bool couple = !(is_zero(couple_L.x) && is_zero(couple_L.y) && is_zero(couple_L.z));
-  {  // load frame follows the smooth rest tangent at s (whisker.hpp)
-    const Eigen::Vector3d& kappa = w.load_frame_curvature()[static_cast<std::size_t>(k)];
-    const S offset = h - S(0.5 * ell[static_cast<std::size_t>(k)]);
+  V3<S> r, F, C, t;
+  {  // load frame follows the smooth rest tangent at s (whisker.hpp), then link k's rest frame
+    const Eigen::Vector3d& kappa = w.load_frame_curvature()[uk];
+    const S offset = h - S(0.5 * w.link_lengths()[uk]);
     const V3<S> psi(offset * kappa.x(), offset * kappa.y(), offset * kappa.z());
     S a, b;
     detail::rodrigues_coefficients(dot(psi, psi), a, b);
-    const Mat3<S> E = detail::rotation_matrix(psi, a, b);
-    v[1] = E * v[1];
-    if (couple) v[2] = E * v[2];
-    v[3] = E * v[3];
+    const Mat3<S> RE = mul(R_link[uk], detail::rotation_matrix(psi, a, b));
+    const Eigen::Vector3d tangent = R_link[uk].col(0);
+    r = V3<S>(h * tangent.x(), h * tangent.y(), h * tangent.z());
+    F = RE * force_L;
+    C = couple ? RE * couple_L : V3<S>(S(0.0), S(0.0), S(0.0));
+    t = V3<S>(RE.m[0], RE.m[3], RE.m[6]);
   }
   if (omega_out)
     for (int j = k + 1; j < w.links(); ++j) omega_out[j].setZero();
   for (int j = k; j >= 0; --j) {
     const std::size_t u = static_cast<std::size_t>(j);
-    // Joint weights: a force's moment falls linearly to zero at the load, a couple's does not, so on the
-    // loaded joint they integrate over [s_k, s] with the trapezoid and the rectangle rule respectively.
-    const V3<S> rxF = cross(v[0], v[1]);
-    V3<S> M;
+    // m: moment of the distal load about the joint per unit weight; P = K M is the predictor of the rotation.
+    const V3<S> m = couple ? cross(r, F) + C : cross(r, F);
+    V3<S> omega;
     if (j == k) {
+      // Joint weights: a force's moment falls linearly to zero at the load, a couple's does not, so on the
+      // loaded joint they integrate over [s_k, s] with the trapezoid and the rectangle rule respectively.
       const double base_w = w.loaded_joint_weight_base(j), slope = w.loaded_joint_weight_slope();
       const S wf = S(base_w) + slope * h, wc = S(base_w) + (slope > 0.0 ? h : S(0.0));
-      M = wf * rxF + wc * v[2];
+      const V3<S> M = couple ? wf * cross(r, F) + wc * C : wf * m;
+      const V3<S> P = mul(K_B[u], M);
+      omega = P + mul(K_B[u], cross(P, S(0.5) * M));
     } else {
-      M = S(weight[u]) * (rxF + v[2]);
+      // Split twist from bending in the joint's mid frame (rest half-rotation in the compliance matrix, the
+      // elastic half-rotation by one predictor-corrector step): second order for curved, twisted rods.
+      // With the joint weight in the matrix, omega = K (M + (K M) x M / 2) reads P + Kw (P x (m / 2)) (m / 2
+      // is formed alongside P: halving is exact).
+      const V3<S> P = mul(Kw_B[u], m);
+      omega = P + mul(Kw_B[u], cross(P, S(0.5) * m));
     }
-    // Split twist from bending in the joint's mid frame (rest half-rotation in the compliance matrix, the
-    // elastic half-rotation by one predictor-corrector step): second order for curved, twisted rods.
-    const Eigen::Matrix3d& K = w.joint_compliance_link()[u];
-    const V3<S> predictor = mul(K, M);
-    V3<S> omega = mul(K, M + S(0.5) * cross(predictor, M));
-    if (j == 0 && base_extra > 0.0) {  // follicle spring in series (moment, not weighted)
-      const V3<S> Mb = rxF + v[2];
-      omega.y += base_extra * Mb.y;
-      omega.z += base_extra * Mb.z;
+    if (j == 0 && base_extra > 0.0) {  // follicle spring in series: bending part of the unweighted moment
+      const Eigen::Vector3d e = R_link[0].col(0);
+      const S twist = m.x * e.x() + m.y * e.y() + m.z * e.z();
+      omega = omega + S(base_extra) * (m - V3<S>(twist * e.x(), twist * e.y(), twist * e.z()));
     }
-    if (omega_out) omega_out[j] = Eigen::Vector3d(value_of(omega.x), value_of(omega.y), value_of(omega.z));
-    // One matrix, the rest rotation after the elastic one, turns every carried vector (eq. (3)).
+    if (omega_out) {
+      const Eigen::Vector3d o(value_of(omega.x), value_of(omega.y), value_of(omega.z));
+      omega_out[j] = R_link[u].transpose() * o;
+    }
+    // One rotation turns every carried vector (eq. (3)): y -> y + a (omega x y) + b (omega (omega . y) - t2 y).
+    // The products need omega and y only, so they are formed while a and b are evaluated; the joint's
+    // critical path is then t2, the coefficients, and one multiply-add.
+    const S t2 = dot(omega, omega);
     S a, b;
-    detail::rodrigues_coefficients(dot(omega, omega), a, b);
-    const Mat3<S> G = mul(Q[u], detail::rotation_matrix(omega, a, b));
-    v[0] = G * v[0];
-    v[1] = G * v[1];
-    if (couple) v[2] = G * v[2];
-    v[3] = G * v[3];
-    if (j > 0) v[0].x += ell[u - 1];
+    detail::rodrigues_coefficients(t2, a, b);
+    const detail::RotationTerms<S> tr(omega, t2, r);
+    // node j-1 -> contact: the turned r plus the rest link below the joint (added to r first, off the path)
+    r = j > 0 ? tr.turned(a, b, V3<S>(link_B[u - 1])) : tr.turned(a, b);
+    F = detail::RotationTerms<S>(omega, t2, F).turned(a, b);
+    if (couple) C = detail::RotationTerms<S>(omega, t2, C).turned(a, b);
+    t = detail::RotationTerms<S>(omega, t2, t).turned(a, b);
   }
-  return {v[0], v[1], v[2], v[3]};
+  return {r, F, C, t};
 }
 
 /// Rotation matrix exp([omega]x) of a joint rotation vector (the one deflect() applies).

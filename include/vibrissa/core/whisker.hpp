@@ -96,6 +96,13 @@ class Whisker {
   /// H diag(1/GJ, 1/EI, 1/EI) H^T with H the rotation to the joint's mid frame (half the rest rotation), so
   /// that twist and bending are split in the frame halfway between the two links [1/(N·m^2)].
   [[nodiscard]] const std::vector<Eigen::Matrix3d>& joint_compliance_link() const { return compliance_link_; }
+  /// joint_compliance_link() in the axes of B at rest, R_j K_j R_j^T with R_j = rest_link_frames_B()[j]: the
+  /// forward walk (chain.hpp) carries its vectors in these axes [1/(N·m^2)].
+  [[nodiscard]] const std::vector<Eigen::Matrix3d>& joint_compliance_B() const { return compliance_B_; }
+  /// joint_compliance_B() times joint_weight(): the compliance of joint j to a load distal to its link [1/(N·m)].
+  [[nodiscard]] const std::vector<Eigen::Matrix3d>& weighted_joint_compliance_B() const { return weighted_compliance_B_; }
+  /// Rest link vectors in B, l_i times the first column of rest_link_frames_B()[i] [m].
+  [[nodiscard]] const std::vector<Eigen::Vector3d>& rest_link_vectors_B() const { return link_vector_B_; }
   /// Rest curvature vector across link k in its own frame [rad/m]: the second-order scheme turns the
   /// load frame by (h - l_k/2) times it, so that "normal to the whisker" follows the smooth rest tangent
   /// rather than the chord (zero for the paper's scheme, whose load is normal to the link).
@@ -134,7 +141,8 @@ class Whisker {
   std::vector<Eigen::Matrix3d> Q_rest_, R_link_B_;
   std::vector<double> radius_, youngs_;
   std::vector<Eigen::Vector3d> load_curvature_;
-  std::vector<Eigen::Matrix3d> compliance_link_;
+  std::vector<Eigen::Matrix3d> compliance_link_, compliance_B_, weighted_compliance_B_;
+  std::vector<Eigen::Vector3d> link_vector_B_;
   std::vector<double> cb_, ct_, weight_, weight_load_base_;
   double weight_load_slope_ = 0.0;
   double base_extra_compliance_ = 0.0;
