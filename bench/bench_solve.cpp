@@ -64,18 +64,6 @@ void BM_ForwardAnalyticJacobian(benchmark::State& state) {
 }
 BENCHMARK(BM_ForwardAnalyticJacobian);
 
-// The Jacobian the solvers form (deflect_for_solve): the contact point, force and couple differentiated, the
-// tangent's value only.
-void BM_SolverJacobian(benchmark::State& state) {
-  const Whisker w = bench_whisker();
-  using D = Dual<3>;
-  for (auto _ : state) {
-    auto c = deflect_for_solve<D>(w, V3<D>(D(0.0), D::variable(1e-4, 0), D::variable(3e-5, 1)),
-                                  V3<D>(D(0.0), D(0.0), D(0.0)), D::variable(0.025, 2));
-    benchmark::DoNotOptimize(c);
-  }
-}
-BENCHMARK(BM_SolverJacobian);
 
 void BM_EdgeCold(benchmark::State& state) {
   const Whisker w = bench_whisker();

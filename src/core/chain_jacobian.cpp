@@ -47,8 +47,7 @@ struct Carried {
 
 }  // namespace
 
-ContactKinematics<D> deflect_analytic(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L, const D& s,
-                                     Differentiate outputs) {
+ContactKinematics<D> deflect_analytic(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L, const D& s) {
   if (w.properties().scheme == Scheme::paper) return deflect_published<D>(w, force_L, couple_L, s);
   int k;
   double h0;
@@ -62,19 +61,17 @@ ContactKinematics<D> deflect_analytic(const Whisker& w, const V3<D>& force_L, co
   const double base_extra = w.base_extra_compliance();
 
   // The carried vectors in rest axes, as deflect() does (chain.hpp).
-  Carried r, F, C, t;
+  Carried r, F, C;
   const V tangent(Eigen::Vector3d(R_link[uk].col(0)));
   r.x = scaled(h, tangent);
   F.x = value(force_L);
   C.x = value(couple_L);
-  t.x = V(1.0, 0.0, 0.0);
   double dh[K];
   for (int i = 0; i < K; ++i) {
     dh[i] = s.d[static_cast<std::size_t>(i)];
     r.dx[i] = scaled(dh[i], tangent);
     F.dx[i] = direction(force_L, i);
     C.dx[i] = direction(couple_L, i);
-    t.dx[i] = V(0.0, 0.0, 0.0);
   }
   const bool couple = !(is_zero(couple_L.x) && is_zero(couple_L.y) && is_zero(couple_L.z));
   {  // load frame at s, then link k's rest frame: psi is parallel to kappa, so J_r(psi) dpsi = dpsi = dh kappa
@@ -87,8 +84,6 @@ ContactKinematics<D> deflect_analytic(const Whisker& w, const V3<D>& force_L, co
     for (int i = 0; i < K; ++i) dtheta[i] = scaled(dh[i], kappa);
     F.turn(RE, dtheta);
     if (couple) C.turn(RE, dtheta);
-    if (outputs == Differentiate::all) t.turn(RE, dtheta);
-    else t.x = RE * t.x;
   }
   for (int j = k; j >= 0; --j) {
     const std::size_t u = static_cast<std::size_t>(j);
@@ -145,10 +140,8 @@ ContactKinematics<D> deflect_analytic(const Whisker& w, const V3<D>& force_L, co
     }
     F.turn(G, dtheta, omega, t2, a, b);
     if (couple) C.turn(G, dtheta, omega, t2, a, b);
-    if (outputs == Differentiate::all) t.turn(G, dtheta, omega, t2, a, b);
-    else t.x = detail::RotationTerms<double>(omega, t2, t.x).turned(a, b);  // the value alone, as deflect()
   }
-  return {pack(r.x, r.dx), pack(F.x, F.dx), pack(C.x, C.dx), pack(t.x, t.dx)};
+  return {pack(r.x, r.dx), pack(F.x, F.dx), pack(C.x, C.dx)};
 }
 
 }  // namespace vibrissa

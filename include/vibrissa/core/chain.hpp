@@ -47,10 +47,9 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
   const auto& R_link = w.rest_link_frames_B();
   const double base_extra = w.base_extra_compliance();
 
-  // r (node j -> contact), F, C and the tangent of the loaded link, in rest axes. Without a couple C stays
-  // zero and is not turned.
+  // r (node j -> contact), F and C in rest axes. Without a couple C stays zero and is not turned.
   const bool couple = !(is_zero(couple_L.x) && is_zero(couple_L.y) && is_zero(couple_L.z));
-  V3<S> r, F, C, t;
+  V3<S> r, F, C;
   {  // load frame follows the smooth rest tangent at s (whisker.hpp), then link k's rest frame
     const Eigen::Vector3d& kappa = w.load_frame_curvature()[uk];
     const S offset = h - S(0.5 * w.link_lengths()[uk]);
@@ -62,7 +61,6 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
     r = V3<S>(h * tangent.x(), h * tangent.y(), h * tangent.z());
     F = RE * force_L;
     C = couple ? RE * couple_L : V3<S>(S(0.0), S(0.0), S(0.0));
-    t = V3<S>(RE.m[0], RE.m[3], RE.m[6]);
   }
   if (omega_out)
     for (int j = k + 1; j < w.links(); ++j) omega_out[j].setZero();
@@ -107,9 +105,8 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
     r = j > 0 ? tr.turned(a, b, V3<S>(link_B[u - 1])) : tr.turned(a, b);
     F = detail::RotationTerms<S>(omega, t2, F).turned(a, b);
     if (couple) C = detail::RotationTerms<S>(omega, t2, C).turned(a, b);
-    t = detail::RotationTerms<S>(omega, t2, t).turned(a, b);
   }
-  return {r, F, C, t};
+  return {r, F, C};
 }
 
 /// Rotation matrix exp([omega]x) of a joint rotation vector (the one deflect() applies).

@@ -15,23 +15,16 @@
 
 namespace vibrissa {
 
-/// Which outputs deflect_analytic() differentiates: all of them, or the contact point, force and couple that
-/// the solvers' residuals use (the tangent then carries its value, with zero derivatives; its tangents are
-/// a third of the work of the walk's turns).
-enum class Differentiate { all, contact_and_load };
-
 /// deflect() of the second-order scheme on Dual<3> inputs by analytic tangents (the derivatives of the
 /// outputs along the three derivative directions of the inputs). Values equal deflect<double>'s bit for bit.
 /// The paper scheme falls back to deflect_published<Dual<3>>.
 ContactKinematics<Dual<3>> deflect_analytic(const Whisker& w, const V3<Dual<3>>& force_L,
-                                            const V3<Dual<3>>& couple_L, const Dual<3>& s,
-                                            Differentiate outputs = Differentiate::all);
+                                            const V3<Dual<3>>& couple_L, const Dual<3>& s);
 
-/// deflect() for the solvers: doubles as they are, Dual<3> through deflect_analytic() (contact and load).
+/// deflect() for the solvers: doubles as they are, Dual<3> through deflect_analytic().
 template <class S>
 ContactKinematics<S> deflect_for_solve(const Whisker& w, const V3<S>& force_L, const V3<S>& couple_L, const S& s) {
-  if constexpr (std::is_same_v<S, Dual<3>>)
-    return deflect_analytic(w, force_L, couple_L, s, Differentiate::contact_and_load);
+  if constexpr (std::is_same_v<S, Dual<3>>) return deflect_analytic(w, force_L, couple_L, s);
   else return deflect<S>(w, force_L, couple_L, s);
 }
 

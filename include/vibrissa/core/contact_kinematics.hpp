@@ -1,5 +1,6 @@
 #pragma once
-// What a deflection returns: the loaded point, load and tangent of the deflected chain (both schemes).
+// What a deflection returns: the loaded point and the load on the deflected chain (both schemes). The tangent
+// at the load is not carried: no solve needs it, and the force (normal to it) or the shape gives it.
 #include "vibrissa/core/small_vector.hpp"
 
 namespace vibrissa {
@@ -10,7 +11,6 @@ struct ContactKinematics {
   V3<S> p_contact_B;  ///< contact point relative to the base [m]
   V3<S> force_B;      ///< force on the whisker at the contact [N]
   V3<S> couple_B;     ///< couple on the whisker at the contact [N·m]
-  V3<S> tangent_B;    ///< unit tangent of the loaded link
 };
 
 }  // namespace vibrissa

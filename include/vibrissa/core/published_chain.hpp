@@ -90,8 +90,8 @@ ContactKinematics<S> deflect_published(const Whisker& w, const V3<S>& force_L, c
   V3<S> n_next = node(m - 1), n_j = node(m - 2);
   const V3<S> loaded = n_next - n_j;
   const Axes<S> frame = published_load_frame(node(1) - node(0), loaded);
-  // v[0] = contact point relative to node j, v[1] = F, v[2] = C, v[3] = tangent of the loaded link.
-  V3<S> v[4] = {n_next - n_j, frame * force_L, frame * couple_L, frame.x};
+  // v[0] = contact point relative to node j, v[1] = F, v[2] = C.
+  V3<S> v[3] = {n_next - n_j, frame * force_L, frame * couple_L};
   if (record) {
     record->node_B.assign(static_cast<std::size_t>(m - 1), Eigen::Vector3d::Zero());
     record->rotation_B.assign(static_cast<std::size_t>(m - 1), Eigen::Matrix3d::Identity());
@@ -137,7 +137,7 @@ ContactKinematics<S> deflect_published(const Whisker& w, const V3<S>& force_L, c
     n_next = n_j;
     n_j = n_prev;
   }
-  return {v[0], v[1], v[2], v[3]};
+  return {v[0], v[1], v[2]};
 }
 
 /// Nodes (N+1) of the deflected whisker in B: each original node moves with the link of the re-meshed
