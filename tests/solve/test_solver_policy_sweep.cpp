@@ -1,0 +1,203 @@
+// The solver policy (issue 13: how many evaluations a solve costs) must not change what a solve returns. A
+// sweep of edge, contact-point and frictional edge solves (both schemes, three curvatures, two poses; pegs
+// that touch, slip off, are out of reach or on the wrong side; cold with and without the root scan, with a
+// hint, warm) is compared with the results of the policy before issue 13, stored in
+// tests/data/solve/policy_sweep.txt: the same statuses, folds, friction states, root counts and "other
+// root"s, and every number within 1e-12 relative.
+// To rewrite the fixture (only when a change of results is intended):
+//   VIBRISSA_WRITE_POLICY_SWEEP=tests/data/solve/policy_sweep.txt build/tests/vibrissa_solve_tests --gtest_filter='SolverPolicy.*'
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "vibrissa/solve/solvers.hpp"
+
+namespace vibrissa {
+namespace {
+
+/// What the sweep records of one solve: the typed outcome and the numbers (NaN for "absent").
+struct Record {
+  std::string name;
+  int status = 0, fold = 0, friction = 0, iterations = 0;
+  std::vector<double> values;  ///< s, F_y, F_z (state), contact point (3), other root, then (s, |F|) per root
+};
+
+double deg(double d) { return d * 3.14159265358979323846 / 180.0; }
+
+/// "prefix<i>" (a stream: GCC 12 warns falsely on std::string operator+ chains with -Wrestrict).
+std::string name(const std::string& prefix, int i, const char* suffix = "") {
+  std::ostringstream o;
+  o << prefix << i << suffix;
+  return o.str();
+}
+
+Record record(const std::string& name, const Solution& s) {
+  Record r;
+  r.name = name;
+  r.status = static_cast<int>(s.status);
+  r.fold = s.fold ? 1 : 0;
+  r.friction = static_cast<int>(s.friction);
+  r.iterations = s.iterations;
+  r.values = {s.state.arc_length,     s.state.force_y,        s.state.force_z,
+              s.contact_point_W.x(),  s.contact_point_W.y(),  s.contact_point_W.z(),
+              s.other_root_arc_length.value_or(std::nan(""))};
+  for (const Root& root : s.roots) r.values.insert(r.values.end(), {root.arc_length, root.force_magnitude});
+  return r;
+}
+
+Edge peg(double x, double y, double tilt = 0.0) {
+  Edge e;
+  e.point = {x, y, 0.0};
+  e.direction = {std::sin(tilt), 0.0, std::cos(tilt)};
+  return e;
+}
+
+std::vector<Record> sweep() {
+  std::vector<Record> out;
+  SolveOptions plain;
+  plain.compute_shape = false;
+  SolveOptions probing = plain;
+  probing.find_other_roots = true;
+  int wi = 0;
+  for (Scheme scheme : {Scheme::second_order, Scheme::paper}) {
+    for (double curvature : {0.0, 12.0, 25.0}) {
+      for (bool tilted : {false, true}) {
+        WhiskerProperties p;
+        p.links = 100;
+        p.scheme = scheme;
+        Pose pose;
+        if (tilted) {
+          pose.theta = deg(10);
+          pose.phi = deg(10);
+          pose.zeta = deg(30);
+        }
+        const Whisker w = Whisker::from_parabola(0.040, curvature, p, pose);
+        const std::string wn = name("w", wi++);
+        // Edge mode: a grid of vertical (and two tilted) pegs; behind the whisker (y < 0) they push it, in
+        // front they would pull (no_contact with an approach), near the tip they slip off, far out of reach.
+        int pi = 0;
+        std::vector<Edge> pegs;
+        for (double x : {0.006, 0.014, 0.022, 0.030, 0.037})
+          for (double y : {-0.008, -0.003, 0.0, 0.004}) pegs.push_back(peg(x, y));
+        pegs.push_back(peg(0.020, -0.002, 0.4));
+        pegs.push_back(peg(0.028, -0.005, -0.3));
+        pegs.push_back(peg(0.2, 0.0));
+        for (const Edge& e : pegs) {
+          const std::string en = name(wn + ".edge", pi++, ".");
+          const Solution cold = solve_edge(w, e, std::nullopt, probing);
+          out.push_back(record(en + "cold", cold));
+          out.push_back(record(en + "approach", solve_edge(w, e, std::nullopt, plain, nullptr, Eigen::Vector3d(0, 1, 0))));
+          if (pi % 3 == 0) out.push_back(record(en + "hint", solve_edge(w, e, 0.5 * w.length(), probing)));
+          // Warm: the previous frame had the peg 0.2 mm nearer the whisker's rest position.
+          Edge before = e;
+          before.point.y() += 2e-4;
+          const Solution prev = solve_edge(w, before, std::nullopt, plain);
+          if (prev.status == Status::converged)
+            out.push_back(record(en + "warm", solve_edge(w, e, std::nullopt, probing, &prev.state)));
+        }
+        // Contact-point mode: targets reached by known loads, moved off them, and out of reach.
+        int ti = 0;
+        for (double f : {5e-5, 2e-4})
+          for (double s : {0.012, 0.025, 0.035})
+            for (double angle : {0.3, 2.0}) {
+              const std::string tn = name(wn + ".point", ti++, ".");
+              const Solution load = solve_force(w, f, s, angle, plain);
+              const Eigen::Vector3d target = load.contact_point_W + Eigen::Vector3d(0.0, 0.0, 5e-4);
+              out.push_back(record(tn + "cold", solve_point(w, target, std::nullopt, plain)));
+              out.push_back(record(tn + "scan", solve_point(w, target, std::nullopt, probing)));
+              if (ti % 2 == 0) out.push_back(record(tn + "hint", solve_point(w, target, s, plain)));
+              out.push_back(record(tn + "warm", solve_point(w, target, std::nullopt, probing, &load.state)));
+            }
+        out.push_back(record(wn + ".point_far", solve_point(w, Eigen::Vector3d(0.1, 0.0, 0.0), std::nullopt, probing)));
+        // Frictional edge mode: stick, slip either way, frictionless, warm from the frictionless solution.
+        const Edge fe = peg(0.020, -0.003);
+        const Solution free = solve_edge(w, fe, std::nullopt, plain);
+        int fi = 0;
+        for (double mu : {0.0, 0.2, 0.48, 3.0})
+          for (double offset : {-2e-3, 1e-3}) {
+            const Eigen::Vector3d previous = free.contact_point_W + Eigen::Vector3d(0.0, 0.0, offset);
+            const std::string fn = name(wn + ".friction", fi++, ".");
+            out.push_back(record(fn + "cold", solve_frictional_edge(w, fe, mu, previous, plain)));
+            if (free.status == Status::converged)
+              out.push_back(record(fn + "warm", solve_frictional_edge(w, fe, mu, previous, plain, &free.state)));
+          }
+      }
+    }
+  }
+  return out;
+}
+
+std::string format(const Record& r) {
+  std::ostringstream o;
+  o << std::setprecision(17) << r.name << ' ' << r.status << ' ' << r.fold << ' ' << r.friction << ' '
+    << r.iterations << ' ' << r.values.size();
+  for (double v : r.values) o << ' ' << v;
+  return o.str();
+}
+
+Record parse(const std::string& line) {
+  std::istringstream in(line);
+  Record r;
+  std::size_t n = 0;
+  in >> r.name >> r.status >> r.fold >> r.friction >> r.iterations >> n;
+  r.values.resize(n);
+  for (double& v : r.values) {
+    std::string t;
+    in >> t;
+    v = std::stod(t);  // reads "nan"
+  }
+  return r;
+}
+
+TEST(SolverPolicy, SweepMatchesTheResultsBeforeIssue13) {
+  const std::vector<Record> now = sweep();
+  if (const char* path = std::getenv("VIBRISSA_WRITE_POLICY_SWEEP")) {
+    std::ofstream f(path);
+    for (const Record& r : now) f << format(r) << '\n';
+    GTEST_SKIP() << "wrote " << now.size() << " records to " << path;
+  }
+  std::ifstream f(std::string(VIBRISSA_SOURCE_DIR) + "/tests/data/solve/policy_sweep.txt");
+  ASSERT_TRUE(f) << "missing tests/data/solve/policy_sweep.txt";
+  std::vector<Record> before;
+  for (std::string line; std::getline(f, line);)
+    if (!line.empty()) before.push_back(parse(line));
+  ASSERT_EQ(before.size(), now.size());
+  double worst = 0.0;
+  long iterations_before = 0, iterations_now = 0;
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    const Record &a = before[i], &b = now[i];
+    ASSERT_EQ(a.name, b.name);
+    EXPECT_EQ(a.status, b.status) << a.name;
+    EXPECT_EQ(a.fold, b.fold) << a.name;
+    EXPECT_EQ(a.friction, b.friction) << a.name;
+    ASSERT_EQ(a.values.size(), b.values.size()) << a.name << ": number of roots";
+    iterations_before += a.iterations;
+    iterations_now += b.iterations;
+    // Relative to the quantity's scale in this solve: arc lengths and points to the whisker's length, forces
+    // to the solved force's magnitude, roots' forces to their own.
+    const double length = 0.040;
+    const double force = std::max(std::hypot(a.values[1], a.values[2]), 1e-300);
+    for (std::size_t k = 0; k < a.values.size(); ++k) {
+      const double x = a.values[k], y = b.values[k];
+      EXPECT_EQ(std::isnan(x), std::isnan(y)) << a.name << " value " << k;
+      if (std::isnan(x) || std::isnan(y)) continue;
+      const bool is_force = k == 1 || k == 2 || (k >= 7 && (k - 7) % 2 == 1);
+      const double scale = is_force ? (k <= 2 ? force : std::max(std::abs(x), 1e-300)) : length;
+      const double rel = std::abs(x - y) / scale;
+      worst = std::max(worst, rel);
+      EXPECT_LE(rel, 1e-12) << a.name << " value " << k << ": " << x << " before, " << y << " now";
+    }
+  }
+  std::cout << now.size() << " solves; largest relative change " << worst << "; iterations " << iterations_before
+            << " before, " << iterations_now << " now\n";
+}
+
+}  // namespace
+}  // namespace vibrissa
