@@ -72,7 +72,8 @@ Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std:
     return detail::checked_solution(std::move(off), options.tolerance, w, X, options);
   }
   Solution out;
-  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge.direction.normalized(), out);
+  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge.direction.normalized(), out,
+                        &a.evaluations);
   detail::set_status(out, a.status,
                      a.status == Status::converged ? "frictionless contact on the edge"
                                                    : "no equilibrium on the edge within the iteration limit");

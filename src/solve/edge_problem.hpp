@@ -22,6 +22,7 @@ struct EdgeAttempt {
   LMResult lm;
   Status status = Status::not_converged;
   bool folded = false;  ///< the equilibrium branch from first touch ends before the target: push-past
+  ContactEvaluations evaluations;  ///< the last kinematics evaluated (the solved point's among them)
 };
 
 /// Solves the edge equations with friction factor c from scaled unknowns u0.

@@ -21,18 +21,19 @@ namespace {
 struct PointAttempt {
   detail::LMResult lm;
   Status status = Status::not_converged;
+  detail::ContactEvaluations evaluations;  ///< the last kinematics evaluated (the solved point's among them)
 };
 
 PointAttempt attempt_point(const Whisker& w, const detail::Scales& sc, const Eigen::Vector3d& target_B,
                            const Eigen::Vector3d& u0, const SolveOptions& options) {
   const Eigen::Vector3d t = target_B / sc.length;
+  PointAttempt a;
   auto residual = [&](const auto& u) {
     using S = std::decay_t<decltype(u[0])>;
-    const auto c = detail::contact_at<S>(w, sc, u);
+    const auto c = a.evaluations.contact_at<S>(w, sc, u);
     return std::array<S, 3>{c.p_contact_B.x / sc.length - t.x(), c.p_contact_B.y / sc.length - t.y(),
                             c.p_contact_B.z / sc.length - t.z()};
   };
-  PointAttempt a;
   a.lm = detail::levenberg_marquardt(residual, u0, detail::contact_bounds(), options.tolerance / sc.length,
                                      options.max_iterations);
   if (a.lm.converged)
@@ -177,7 +178,7 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
   }
 
   Solution out;
-  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge_direction_W, out);
+  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge_direction_W, out, &a.evaluations);
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * sc.length;
   switch (a.status) {
