@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@ namespace {
 struct Record {
   std::string name;
   int status = 0, fold = 0, friction = 0, iterations = 0;
+  double residual = 0.0;  ///< the solve's final residual [m] (reported, not compared)
   std::vector<double> values;  ///< s, F_y, F_z (state), contact point (3), other root, then (s, |F|) per root
 };
 
@@ -45,6 +47,7 @@ Record record(const std::string& name, const Solution& s) {
   r.fold = s.fold ? 1 : 0;
   r.friction = static_cast<int>(s.friction);
   r.iterations = s.iterations;
+  r.residual = s.residual;
   r.values = {s.state.arc_length,     s.state.force_y,        s.state.force_z,
               s.contact_point_W.x(),  s.contact_point_W.y(),  s.contact_point_W.z(),
               s.other_root_arc_length.value_or(std::nan(""))};
@@ -99,6 +102,7 @@ std::vector<Record> sweep() {
           Edge before = e;
           before.point.y() += 2e-4;
           const Solution prev = solve_edge(w, before, std::nullopt, plain);
+          out.push_back(record(en + "previous", prev));
           if (prev.status == Status::converged)
             out.push_back(record(en + "warm", solve_edge(w, e, std::nullopt, probing, &prev.state)));
         }
@@ -137,7 +141,7 @@ std::vector<Record> sweep() {
 std::string format(const Record& r) {
   std::ostringstream o;
   o << std::setprecision(17) << r.name << ' ' << r.status << ' ' << r.fold << ' ' << r.friction << ' '
-    << r.iterations << ' ' << r.values.size();
+    << r.iterations << ' ' << r.residual << ' ' << r.values.size();
   for (double v : r.values) o << ' ' << v;
   return o.str();
 }
@@ -146,7 +150,7 @@ Record parse(const std::string& line) {
   std::istringstream in(line);
   Record r;
   std::size_t n = 0;
-  in >> r.name >> r.status >> r.fold >> r.friction >> r.iterations >> n;
+  in >> r.name >> r.status >> r.fold >> r.friction >> r.iterations >> r.residual >> n;
   r.values.resize(n);
   for (double& v : r.values) {
     std::string t;
@@ -165,24 +169,40 @@ TEST(SolverPolicy, SweepMatchesTheResultsBeforeIssue13) {
   }
   std::ifstream f(std::string(VIBRISSA_SOURCE_DIR) + "/tests/data/solve/policy_sweep.txt");
   ASSERT_TRUE(f) << "missing tests/data/solve/policy_sweep.txt";
-  std::vector<Record> before;
+  std::map<std::string, Record> before;
   for (std::string line; std::getline(f, line);)
-    if (!line.empty()) before.push_back(parse(line));
-  ASSERT_EQ(before.size(), now.size());
-  double worst = 0.0;
-  long iterations_before = 0, iterations_now = 0;
-  for (std::size_t i = 0; i < now.size(); ++i) {
-    const Record &a = before[i], &b = now[i];
-    ASSERT_EQ(a.name, b.name);
+    if (!line.empty()) {
+      Record r = parse(line);
+      before.emplace(r.name, std::move(r));
+    }
+  EXPECT_EQ(before.size(), now.size());
+  const double length = 0.040;
+  const double force_scale = Whisker::from_parabola(length, 0.0, WhiskerProperties{}).base_bending_stiffness() / (length * length);
+  const double scaled_tolerance = SolveOptions{}.tolerance / length;
+  double worst = 0.0, worst_in_tolerances = 0.0;
+  long iterations_before = 0, iterations_now = 0, beyond_relative = 0, residual_lower = 0, residual_higher = 0;
+  for (const Record& b : now) {
+    const auto found = before.find(b.name);
+    if (found == before.end()) {
+      ADD_FAILURE() << b.name << " was not solved before (its previous frame's status changed)";
+      continue;
+    }
+    const Record& a = found->second;
     EXPECT_EQ(a.status, b.status) << a.name;
     EXPECT_EQ(a.fold, b.fold) << a.name;
     EXPECT_EQ(a.friction, b.friction) << a.name;
-    ASSERT_EQ(a.values.size(), b.values.size()) << a.name << ": number of roots";
+    if (a.values.size() != b.values.size()) {
+      ADD_FAILURE() << a.name << ": " << (a.values.size() - 7) / 2 << " roots before, " << (b.values.size() - 7) / 2 << " now";
+      continue;
+    }
     iterations_before += a.iterations;
     iterations_now += b.iterations;
+    residual_lower += b.residual < a.residual ? 1 : 0;
+    residual_higher += b.residual > a.residual ? 1 : 0;
     // Relative to the quantity's scale in this solve: arc lengths and points to the whisker's length, forces
-    // to the solved force's magnitude, roots' forces to their own.
-    const double length = 0.040;
+    // to the solved force's magnitude, roots' forces to their own. A solve determines its root to within its
+    // tolerance (here 1e-12 m, 2.5e-11 of L), so changes are also measured in scaled units (lengths / L,
+    // forces / (E I_0 / L^2)) against the scaled tolerance.
     const double force = std::max(std::hypot(a.values[1], a.values[2]), 1e-300);
     for (std::size_t k = 0; k < a.values.size(); ++k) {
       const double x = a.values[k], y = b.values[k];
@@ -191,12 +211,20 @@ TEST(SolverPolicy, SweepMatchesTheResultsBeforeIssue13) {
       const bool is_force = k == 1 || k == 2 || (k >= 7 && (k - 7) % 2 == 1);
       const double scale = is_force ? (k <= 2 ? force : std::max(std::abs(x), 1e-300)) : length;
       const double rel = std::abs(x - y) / scale;
+      const double in_tolerances = std::abs(x - y) / (is_force ? force_scale : length) / scaled_tolerance;
       worst = std::max(worst, rel);
-      EXPECT_LE(rel, 1e-12) << a.name << " value " << k << ": " << x << " before, " << y << " now";
+      if (rel > 1e-12) {
+        ++beyond_relative;
+        worst_in_tolerances = std::max(worst_in_tolerances, in_tolerances);
+      }
+      EXPECT_TRUE(rel <= 1e-12 || in_tolerances <= 1.0)
+          << a.name << " value " << k << ": " << x << " before, " << y << " now (" << in_tolerances << " tolerances)";
     }
   }
-  std::cout << now.size() << " solves; largest relative change " << worst << "; iterations " << iterations_before
-            << " before, " << iterations_now << " now\n";
+  std::cout << now.size() << " solves; largest relative change " << worst << "; " << beyond_relative
+            << " values changed by more than 1e-12 relative, at most " << worst_in_tolerances
+            << " tolerances; residual lower in " << residual_lower << ", higher in " << residual_higher
+            << "; iterations " << iterations_before << " before, " << iterations_now << " now\n";
 }
 
 }  // namespace
