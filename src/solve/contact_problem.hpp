@@ -105,7 +105,18 @@ void set_status(Solution& out, Status status, std::string_view message);
 Solution unloaded_solution(const Whisker& w, const Placement& X_WB, Status status, std::string_view message,
                            const SolveOptions& options);
 
-/// Arc length at which the rest whisker is first as far from the base as `distance` (or L).
-double arc_length_at_distance(const Whisker& w, double distance);
+/// Arc length at which the rest whisker is first as far from the base as `distance` (or L), distances
+/// measured normal to the unit vector `along` if given (seen along it).
+double arc_length_at_distance(const Whisker& w, double distance, const Eigen::Vector3d& along = Eigen::Vector3d::Zero());
+
+/// Transverse compliance of the rest whisker at arc length s as a straight cantilever [m/N]: a force there
+/// turns joint j (at s_j < s) by w_j (s - s_j) F / E I_j, which moves the load point by (s - s_j) times that
+/// (chain.hpp, eqs. (1), (3)), plus the follicle spring's s^2 / k.
+double cantilever_compliance(const Whisker& w, double s);
+
+/// Scaled unknowns (F_y, F_z, s) of the normal force at arc length s that moves the rest whisker's point there
+/// by `displacement_B` as a linear cantilever (its component normal to the rest tangent): the beam-theory
+/// first guess of cold solves (as Elastica3D starts its search).
+Eigen::Vector3d cantilever_start(const Whisker& w, const Scales& sc, double s, const Eigen::Vector3d& displacement_B);
 
 }  // namespace vibrissa::detail
