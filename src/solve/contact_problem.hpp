@@ -114,6 +114,11 @@ double arc_length_at_distance(const Whisker& w, double distance, const Eigen::Ve
 /// (chain.hpp, eqs. (1), (3)), plus the follicle spring's s^2 / k.
 double cantilever_compliance(const Whisker& w, double s);
 
+/// Largest turn about the base, from the rest point to where the contact must go, for which a cold solve
+/// starts from the cantilever guess [rad]. Beyond it linear beam theory is no guide, and which of several
+/// equilibria a solve reaches depends on its path: those start from zero force, as before issue 13.
+inline constexpr double max_cantilever_turn = 0.5;
+
 /// Scaled unknowns (F_y, F_z, s) of the normal force at arc length s that moves the rest whisker's point there
 /// by `displacement_B` as a linear cantilever (its component normal to the rest tangent): the beam-theory
 /// first guess of cold solves (as Elastica3D starts its search).

@@ -40,10 +40,6 @@ EdgeAttempt continue_from_touch(const Whisker& w, const Scales& sc, const EdgeGe
 void check_contact_side(const Whisker& w, const Placement& X_WB, const std::optional<Eigen::Vector3d>& approach_W,
                         Solution& out);
 
-/// Largest turn about the base (seen along the line, from the rest point to the line) for which a cold edge
-/// solve starts from the cantilever guess [rad].
-inline constexpr double max_cantilever_turn = 0.5;
-
 /// Scaled unknowns from which a cold edge solve starts: the arc length at which the rest whisker, seen
 /// along the line, is as far from the base as the line (a rotation about the base along the line keeps these
 /// distances), with the cantilever force that moves that point onto the line (beam theory, as Elastica3D
