@@ -83,7 +83,7 @@ def test_the_method_detects_a_call_that_holds_the_gil():
 def test_python_keeps_running_during_a_batch():
     w, points = batch_args()
     seconds, inside = repetitions_inside(
-        lambda: vibrissa.solve_point_batch(w, np.tile(points, (5, 1)), warm_start=False, threads=1), pure_python)
+        lambda: vibrissa.solve_point_batch(w, np.tile(points, (10, 1)), warm_start=False, threads=1), pure_python)
     assert seconds >= MIN_CALL_SECONDS
     assert inside >= 10, (seconds, inside)
 
@@ -91,7 +91,7 @@ def test_python_keeps_running_during_a_batch():
 def test_two_threads_are_inside_the_solver_together():
     w, points = batch_args()
     seconds, inside = repetitions_inside(
-        lambda: vibrissa.solve_point_batch(w, np.tile(points, (5, 1)), warm_start=False, threads=1),
+        lambda: vibrissa.solve_point_batch(w, np.tile(points, (10, 1)), warm_start=False, threads=1),
         lambda: vibrissa.solve_point_batch(w, points[:5], warm_start=False, threads=1))
     assert seconds >= MIN_CALL_SECONDS
     # Short solves started and finished while the long batch was inside the solver: the calls overlapped.

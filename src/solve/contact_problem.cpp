@@ -74,13 +74,35 @@ void set_force_angle(const Whisker& w, const Placement& X, double force, double 
   state.force_z = -force * std::sin(a);
 }
 
+std::optional<ContactKinematics<double>> ContactEvaluations::at(const LoadState& state) const {
+  if (state.force_x != 0.0) return std::nullopt;
+  return at_load(Eigen::Vector3d(state.force_y, state.force_z, state.arc_length));
+}
+
+std::optional<ContactKinematics<double>> ContactEvaluations::at_load(const Eigen::Vector3d& load) const {
+  if (load == value_load_) return value_;
+  if (load == jacobian_load_) {
+    auto v = [](const V3<Dual<3>>& x) { return V3<double>(x.x.v, x.y.v, x.z.v); };
+    return ContactKinematics<double>{v(jacobian_.p_contact_B), v(jacobian_.force_B), v(jacobian_.couple_B),
+                                     v(jacobian_.tangent_B)};
+  }
+  return std::nullopt;
+}
+
 void fill_solution(const Whisker& w, const Placement& X, const LoadState& state, const SolveOptions& options,
-                   const std::optional<Eigen::Vector3d>& edge_direction_W, Solution& out) {
+                   const std::optional<Eigen::Vector3d>& edge_direction_W, Solution& out,
+                   const ContactEvaluations* evaluated) {
   Workspace& ws = workspace();
   auto& omega = ws.omega;
-  omega.resize(static_cast<std::size_t>(w.links()));
-  const V3<double> F_L(state.force_x, state.force_y, state.force_z);
-  const auto c = deflect<double>(w, F_L, V3<double>(0, 0, 0), state.arc_length, omega.data());
+  const bool walk_for_shape = options.compute_shape && w.properties().scheme != Scheme::paper;
+  std::optional<ContactKinematics<double>> known;
+  if (evaluated && !walk_for_shape) known = evaluated->at(state);
+  if (!known) {
+    if (walk_for_shape) omega.resize(static_cast<std::size_t>(w.links()));
+    const V3<double> F_L(state.force_x, state.force_y, state.force_z);
+    known = deflect<double>(w, F_L, V3<double>(0, 0, 0), state.arc_length, walk_for_shape ? omega.data() : nullptr);
+  }
+  const ContactKinematics<double>& c = *known;
   const Eigen::Vector3d p_B = to_eigen(c.p_contact_B), F_B = to_eigen(c.force_B);
   const Eigen::Vector3d M_B = p_B.cross(F_B);
   out.state = state;
@@ -146,18 +168,39 @@ Solution unloaded_solution(const Whisker& w, const Placement& X, Status status, 
   return out;
 }
 
-double arc_length_at_distance(const Whisker& w, double distance) {
+double arc_length_at_distance(const Whisker& w, double distance, const Eigen::Vector3d& along) {
   const auto& nodes = w.rest_nodes_B();
   const auto& arc = w.node_arc_lengths();
+  auto from_base = [&](const Eigen::Vector3d& p) { return (p - p.dot(along) * along).norm(); };
   for (std::size_t i = 1; i < nodes.size(); ++i) {
-    const double d1 = nodes[i].norm();
+    const double d1 = from_base(nodes[i]);
     if (d1 >= distance) {
-      const double d0 = nodes[i - 1].norm();
+      const double d0 = from_base(nodes[i - 1]);
       const double f = (distance - d0) / std::max(d1 - d0, 1e-300);
       return arc[i - 1] + std::clamp(f, 0.0, 1.0) * (arc[i] - arc[i - 1]);
     }
   }
   return w.length();
+}
+
+double cantilever_compliance(const Whisker& w, double s) {
+  const auto& arc = w.node_arc_lengths();
+  const auto& cb = w.bending_compliance();
+  const auto& weight = w.joint_weight();
+  double c = w.base_extra_compliance() * s * s;
+  for (std::size_t j = 0; j < cb.size() && arc[j] < s; ++j) c += weight[j] * cb[j] * (s - arc[j]) * (s - arc[j]);
+  return c;
+}
+
+Eigen::Vector3d cantilever_start(const Whisker& w, const Scales& sc, double s, const Eigen::Vector3d& displacement_B) {
+  int k;
+  double h;
+  w.locate(s, k, h);
+  const Eigen::Matrix3d& R = w.rest_link_frames_B()[static_cast<std::size_t>(k)];  // tangent, normal, binormal
+  const double c = cantilever_compliance(w, s);
+  if (!(c > 0.0)) return {0.0, 0.0, s / sc.length};
+  const Eigen::Vector3d f = R.transpose() * displacement_B / (c * sc.force);
+  return {f.y(), f.z(), s / sc.length};
 }
 
 }  // namespace vibrissa::detail

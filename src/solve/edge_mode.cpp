@@ -50,8 +50,10 @@ Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std:
   Eigen::Vector3d u0;
   if (warm)
     u0 = detail::unknowns_from_state(*warm, sc);
+  else if (hint)
+    u0 = Eigen::Vector3d(0.0, 0.0, std::clamp(*hint, 1e-6 * sc.length, w.length()) / sc.length);
   else
-    u0 = Eigen::Vector3d(0.0, 0.0, (hint ? std::clamp(*hint, 1e-6 * sc.length, w.length()) : s_near) / sc.length);
+    u0 = detail::cold_edge_start(w, sc, g, s_near);
   detail::EdgeAttempt a = detail::attempt_edge(w, sc, g, 0.0, u0, options);
   if (a.status == Status::not_converged && (warm || hint)) {
     detail::EdgeAttempt cold =
@@ -72,7 +74,8 @@ Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std:
     return detail::checked_solution(std::move(off), options.tolerance, w, X, options);
   }
   Solution out;
-  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge.direction.normalized(), out);
+  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge.direction.normalized(), out,
+                        &a.evaluations);
   detail::set_status(out, a.status,
                      a.status == Status::converged ? "frictionless contact on the edge"
                                                    : "no equilibrium on the edge within the iteration limit");

@@ -1,5 +1,8 @@
 #include "edge_problem.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace vibrissa::detail {
 
 EdgeGeometryB edge_in_body(const Placement& X, const Edge& edge) {
@@ -13,9 +16,10 @@ EdgeGeometryB edge_in_body(const Placement& X, const Edge& edge) {
 EdgeAttempt attempt_edge(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double c,
                          const Eigen::Vector3d& u0, const SolveOptions& options) {
   const Eigen::Vector3d q = g.point / sc.length;
+  EdgeAttempt a;
   auto residual = [&](const auto& u) {
     using S = std::decay_t<decltype(u[0])>;
-    const auto k = contact_at<S>(w, sc, u);
+    const auto k = a.evaluations.contact_at<S>(w, sc, u);
     const V3<S> rel(k.p_contact_B.x / sc.length - q.x(), k.p_contact_B.y / sc.length - q.y(),
                     k.p_contact_B.z / sc.length - q.z());
     const V3<S> F(k.force_B.x / sc.force, k.force_B.y / sc.force, k.force_B.z / sc.force);
@@ -28,7 +32,6 @@ EdgeAttempt attempt_edge(const Whisker& w, const Scales& sc, const EdgeGeometryB
     }
     return std::array<S, 3>{dot(rel, e1), dot(rel, e2), along};
   };
-  EdgeAttempt a;
   a.lm = levenberg_marquardt(residual, u0, contact_bounds(), options.tolerance / sc.length, options.max_iterations);
   if (a.lm.converged)
     a.status = a.lm.u[2] > 1.0 + 1e-12 ? Status::slipped_off : Status::converged;
@@ -96,6 +99,15 @@ double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g, bool& w
     }
   }
   return best_s;
+}
+
+Eigen::Vector3d cold_edge_start(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double s_near) {
+  auto across = [&](const Eigen::Vector3d& p) { return p - p.dot(g.direction) * g.direction; };
+  const double s = arc_length_at_distance(w, across(g.point).norm(), g.direction);
+  const Eigen::Vector3d p = w.rest_point_B(s);
+  const double turn = std::atan2(across(p).cross(across(g.point)).norm(), across(p).dot(across(g.point)));
+  if (!(turn <= max_cantilever_turn)) return {0.0, 0.0, s_near / sc.length};
+  return cantilever_start(w, sc, s, across(g.point - p));
 }
 
 }  // namespace vibrissa::detail

@@ -22,6 +22,7 @@ struct EdgeAttempt {
   LMResult lm;
   Status status = Status::not_converged;
   bool folded = false;  ///< the equilibrium branch from first touch ends before the target: push-past
+  ContactEvaluations evaluations;  ///< the last kinematics evaluated (the solved point's among them)
 };
 
 /// Solves the edge equations with friction factor c from scaled unknowns u0.
@@ -38,6 +39,13 @@ EdgeAttempt continue_from_touch(const Whisker& w, const Scales& sc, const EdgeGe
 /// the status to no_contact if it does not.
 void check_contact_side(const Whisker& w, const Placement& X_WB, const std::optional<Eigen::Vector3d>& approach_W,
                         Solution& out);
+
+/// Scaled unknowns from which a cold edge solve starts: the arc length at which the rest whisker, seen
+/// along the line, is as far from the base as the line (a rotation about the base along the line keeps these
+/// distances), with the cantilever force that moves that point onto the line (beam theory, as Elastica3D
+/// starts). If that point must turn by more than max_cantilever_turn, zero force at s_near (the rest point
+/// nearest the line).
+Eigen::Vector3d cold_edge_start(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double s_near);
 
 /// Arc length of the rest whisker's point nearest the line, and whether the line is within reach.
 double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g, bool& within_reach);

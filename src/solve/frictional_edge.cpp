@@ -28,10 +28,16 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
   inner.compute_shape = false;
   inner.find_other_roots = false;
   const Solution free = solve_edge(w, X, edge, std::nullopt, inner, warm, approach_W);
-  // The reported Solution: outputs recomputed from the final state (with the caller's options), typed outcome.
-  auto finish = [&](const Solution& s, FrictionState friction, std::string_view message) {
+  // The reported Solution: outputs from the final state (with the caller's options), typed outcome. A
+  // converged inner solve already filled them for the same state and edge direction: without a shape they
+  // are copied (evaluations: the slip attempt's, whose converged point they hold).
+  auto finish = [&](const Solution& s, FrictionState friction, std::string_view message,
+                    const detail::ContactEvaluations* evaluations = nullptr) {
     Solution out;
-    detail::fill_solution(w, X, s.state, options, d, out);
+    if (s.status == Status::converged && !options.compute_shape && !evaluations)
+      out = s;
+    else
+      detail::fill_solution(w, X, s.state, options, d, out, evaluations);
     detail::set_status(out, s.status, message);
     out.fold = s.fold;
     out.friction = s.status == Status::converged ? friction : FrictionState::none;
@@ -75,7 +81,8 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
                             ? "slip: contact moved along the edge with |F_edge| = mu F_N"
                             : (best.status == Status::slipped_off
                                    ? "slip: equilibrium would need contact beyond the tip"
-                                   : "slip: no frictional equilibrium within the iteration limit"));
+                                   : "slip: no frictional equilibrium within the iteration limit"),
+                        &best.evaluations);
   detail::check_contact_side(w, X, approach_W, out);
   return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
 }

@@ -21,18 +21,19 @@ namespace {
 struct PointAttempt {
   detail::LMResult lm;
   Status status = Status::not_converged;
+  detail::ContactEvaluations evaluations;  ///< the last kinematics evaluated (the solved point's among them)
 };
 
 PointAttempt attempt_point(const Whisker& w, const detail::Scales& sc, const Eigen::Vector3d& target_B,
                            const Eigen::Vector3d& u0, const SolveOptions& options) {
   const Eigen::Vector3d t = target_B / sc.length;
+  PointAttempt a;
   auto residual = [&](const auto& u) {
     using S = std::decay_t<decltype(u[0])>;
-    const auto c = detail::contact_at<S>(w, sc, u);
+    const auto c = a.evaluations.contact_at<S>(w, sc, u);
     return std::array<S, 3>{c.p_contact_B.x / sc.length - t.x(), c.p_contact_B.y / sc.length - t.y(),
                             c.p_contact_B.z / sc.length - t.z()};
   };
-  PointAttempt a;
   a.lm = detail::levenberg_marquardt(residual, u0, detail::contact_bounds(), options.tolerance / sc.length,
                                      options.max_iterations);
   if (a.lm.converged)
@@ -109,6 +110,18 @@ Eigen::Vector3d fixed_arc_length_start(const Whisker& w, const detail::Scales& s
   return {f[0], f[1], s};
 }
 
+/// Scaled unknowns from which a cold solve without a hint starts: the arc length at which the rest whisker is
+/// as far from the base as the target (a rotation about the base keeps that distance), with the cantilever
+/// force that moves that point to the target (beam theory, as Elastica3D starts) if it turns by at most
+/// detail::max_cantilever_turn, else zero force (which of several roots is reached then depends on the path).
+Eigen::Vector3d cold_point_start(const Whisker& w, const detail::Scales& sc, const Eigen::Vector3d& target_B) {
+  const double s = detail::arc_length_at_distance(w, target_B.norm());
+  const Eigen::Vector3d p = w.rest_point_B(s);
+  const double turn = std::atan2(p.cross(target_B).norm(), p.dot(target_B));
+  if (!(turn <= detail::max_cantilever_turn)) return {0.0, 0.0, s / sc.length};
+  return detail::cantilever_start(w, sc, s, target_B - p);
+}
+
 }  // namespace
 
 Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d& point_W, std::optional<double> hint,
@@ -131,9 +144,10 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
   Eigen::Vector3d u0;
   if (warm) {
     u0 = detail::unknowns_from_state(*warm, sc);
+  } else if (hint) {
+    u0 = Eigen::Vector3d(0.0, 0.0, std::clamp(*hint, 1e-6 * sc.length, w.length()) / sc.length);
   } else {
-    const double s0 = hint ? std::clamp(*hint, 1e-6 * sc.length, w.length()) : detail::arc_length_at_distance(w, distance);
-    u0 = Eigen::Vector3d(0.0, 0.0, s0 / sc.length);
+    u0 = cold_point_start(w, sc, target_B);
   }
   PointAttempt a = attempt_point(w, sc, target_B, u0, options);
   std::vector<Root> roots;
@@ -177,7 +191,7 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
   }
 
   Solution out;
-  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge_direction_W, out);
+  detail::fill_solution(w, X, detail::state_from_unknowns(a.lm.u, sc), options, edge_direction_W, out, &a.evaluations);
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * sc.length;
   switch (a.status) {
