@@ -83,8 +83,7 @@ std::optional<ContactKinematics<double>> ContactEvaluations::at_load(const Eigen
   if (load == value_load_) return value_;
   if (load == jacobian_load_) {
     auto v = [](const V3<Dual<3>>& x) { return V3<double>(x.x.v, x.y.v, x.z.v); };
-    return ContactKinematics<double>{v(jacobian_.p_contact_B), v(jacobian_.force_B), v(jacobian_.couple_B),
-                                     v(jacobian_.tangent_B)};
+    return ContactKinematics<double>{v(jacobian_.p_contact_B), v(jacobian_.force_B), v(jacobian_.couple_B)};
   }
   return std::nullopt;
 }
