@@ -64,7 +64,6 @@ void BM_ForwardAnalyticJacobian(benchmark::State& state) {
 }
 BENCHMARK(BM_ForwardAnalyticJacobian);
 
-
 void BM_EdgeCold(benchmark::State& state) {
   const Whisker w = bench_whisker();
   const Edge peg = bench_peg();

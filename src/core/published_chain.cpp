@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace vibrissa {
 
@@ -11,7 +12,9 @@ int published_node_count(const Whisker& w, double s) {
   return std::max(at_or_before, 3);
 }
 
-double published_angle_offset(const Whisker& w, const Eigen::Matrix3d& R_WB, double s) {
+namespace {
+/// The first and the loaded link of the rest chain re-meshed for a load at s (as deflect_published() meshes).
+std::pair<Eigen::Vector3d, Eigen::Vector3d> rest_first_and_loaded_links(const Whisker& w, double s) {
   const auto& remesh = w.published_remesh();
   const int m = published_node_count(w, s);
   const double step = (s > 0.0 ? s : w.node_arc_lengths()[1]) / double(m - 1);
@@ -19,7 +22,17 @@ double published_angle_offset(const Whisker& w, const Eigen::Matrix3d& R_WB, dou
     const double t = double(k) * step;
     return Eigen::Vector3d(remesh.node_B[0](t), remesh.node_B[1](t), remesh.node_B[2](t));
   };
-  const Eigen::Vector3d first = node(1) - node(0), loaded = node(m - 1) - node(m - 2);
+  return {node(1) - node(0), node(m - 1) - node(m - 2)};
+}
+}  // namespace
+
+Axes<double> published_rest_load_frame(const Whisker& w, double s) {
+  const auto [first, loaded] = rest_first_and_loaded_links(w, s);
+  return published_load_frame<double>(first, loaded);
+}
+
+double published_angle_offset(const Whisker& w, const Eigen::Matrix3d& R_WB, double s) {
+  const auto [first, loaded] = rest_first_and_loaded_links(w, s);
   const Axes<double> in_B = published_load_frame<double>(first, loaded);
   const Axes<double> in_W = published_load_frame<double>(Eigen::Vector3d(R_WB * first), Eigen::Vector3d(R_WB * loaded));
   const Eigen::Vector3d y_B = R_WB * to_eigen(in_B.y), z_B = R_WB * to_eigen(in_B.z), y_W = to_eigen(in_W.y);

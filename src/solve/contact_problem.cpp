@@ -195,11 +195,15 @@ Eigen::Vector3d cantilever_start(const Whisker& w, const Scales& sc, double s, c
   int k;
   double h;
   w.locate(s, k, h);
-  const Eigen::Matrix3d& R = w.rest_link_frames_B()[static_cast<std::size_t>(k)];  // tangent, normal, binormal
   const double c = cantilever_compliance(w, s);
   if (!(c > 0.0)) return {0.0, 0.0, s / sc.length};
-  const Eigen::Vector3d f = R.transpose() * displacement_B / (c * sc.force);
-  return {f.y(), f.z(), s / sc.length};
+  const Eigen::Vector3d F_B = displacement_B / (c * sc.force);
+  if (w.properties().scheme == Scheme::paper) {  // its unknowns are components in Elastica3D's load frame
+    const Axes<double> frame = published_rest_load_frame(w, s);
+    return {F_B.dot(to_eigen(frame.y)), F_B.dot(to_eigen(frame.z)), s / sc.length};
+  }
+  const Eigen::Matrix3d& R = w.rest_link_frames_B()[static_cast<std::size_t>(k)];  // tangent, normal, binormal
+  return {F_B.dot(R.col(1)), F_B.dot(R.col(2)), s / sc.length};
 }
 
 }  // namespace vibrissa::detail

@@ -40,7 +40,7 @@ ContactKinematics<S> contact_at(const Whisker& w, const Scales& sc, const std::a
 /// The contact kinematics an attempt evaluated last, on doubles and with the Jacobian, each with the load it
 /// was evaluated at (F_y, F_z, s: exactly the numbers given to the walk). An evaluation at the same load is
 /// taken from here instead of walking the chain again: the converged point's kinematics give the Solution's
-/// outputs (fill_solution), and an attempt that starts where another ended reuses that one's Jacobian.
+/// outputs (fill_solution; for an attempt that stopped unconverged, its last Jacobian evaluation's values).
 /// Values of a Jacobian evaluation are the same numbers as the double walk's (core/chain_jacobian.hpp).
 class ContactEvaluations {
  public:

