@@ -53,6 +53,11 @@ def test_warm_start_continues_the_root_and_saves_iterations(small_whisker):
     warm = vibrissa.solve_point_batch(small_whisker, track, warm_start=True)
     cold = vibrissa.solve_point_batch(small_whisker, track, warm_start=False)
     assert warm.iterations[1:].sum() < cold.iterations[1:].sum()
+    # ... and continues the same root: where on the whisker the contact is, and its load, agree with the cold
+    # solve's in every frame (the contact point itself is the target in both)
+    np.testing.assert_array_equal(warm.status, cold.status)
+    np.testing.assert_allclose(warm.arc_length, cold.arc_length, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(warm.force_magnitude, cold.force_magnitude, rtol=1e-6)
 
 
 def test_thread_count_does_not_change_results(small_whisker, peg_track):
