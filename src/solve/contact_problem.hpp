@@ -42,6 +42,8 @@ ContactKinematics<S> contact_at(const Whisker& w, const Scales& sc, const std::a
 /// taken from here instead of walking the chain again: the converged point's kinematics give the Solution's
 /// outputs (fill_solution; for an attempt that stopped unconverged, its last Jacobian evaluation's values).
 /// Values of a Jacobian evaluation are the same numbers as the double walk's (core/chain_jacobian.hpp).
+/// A record made for one whisker may seed attempts on the same whisker (frictional edge: the previous frame's
+/// Jacobian serves both the frictionless and the stick solve, which start there).
 class ContactEvaluations {
  public:
   /// contact_at() through the record: scaled unknowns u; a Dual<3> u must be seeded as the LM seeds it
@@ -50,6 +52,11 @@ class ContactEvaluations {
   ContactKinematics<S> contact_at(const Whisker& w, const Scales& sc, const std::array<S, 3>& u);
   /// The kinematics at `state` if an evaluation was at exactly that load (normal loads: force_x = 0).
   [[nodiscard]] std::optional<ContactKinematics<double>> at(const LoadState& state) const;
+  /// Records the kinematics with the Jacobian at scaled unknowns u (as an attempt starting at u evaluates).
+  void evaluate_jacobian_at(const Whisker& w, const Scales& sc, const Eigen::Vector3d& u) {
+    using D = Dual<3>;
+    (void)contact_at<D>(w, sc, std::array<D, 3>{D::variable(u[0], 0), D::variable(u[1], 1), D::variable(u[2], 2)});
+  }
 
  private:
   [[nodiscard]] std::optional<ContactKinematics<double>> at_load(const Eigen::Vector3d& load) const;
@@ -88,6 +95,11 @@ void set_force_angle(const Whisker& w, const Placement& X_WB, double force, doub
 
 /// Orthonormal pair spanning the plane normal to unit vector d.
 void normal_basis(const Eigen::Vector3d& d, Eigen::Vector3d& e1, Eigen::Vector3d& e2);
+
+/// solve_point() whose first attempt reuses `known` evaluations (nullptr: none).
+Solution solve_point_from(const Whisker& w, const Placement& X_WB, const Eigen::Vector3d& point_W,
+                          std::optional<double> hint, const SolveOptions& options, const LoadState* warm,
+                          const std::optional<Eigen::Vector3d>& edge_direction_W, const ContactEvaluations* known);
 
 /// Fills every output of a Solution from the solved state (world and whisker-frame signals, shape).
 /// `edge_direction_W` (unit) adds normal_force / edge_force. `evaluated`, if it holds the kinematics at

@@ -36,6 +36,14 @@ void check_contact_side(const Whisker& w, const Placement& X, const std::optiona
 Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std::optional<double> hint,
                     const SolveOptions& options, const LoadState* warm,
                     const std::optional<Eigen::Vector3d>& approach_W) {
+  return detail::solve_edge_from(w, X, edge, hint, options, warm, approach_W, nullptr);
+}
+
+namespace detail {
+
+Solution solve_edge_from(const Whisker& w, const Placement& X, const Edge& edge, std::optional<double> hint,
+                         const SolveOptions& options, const LoadState* warm,
+                         const std::optional<Eigen::Vector3d>& approach_W, const ContactEvaluations* known) {
   validate(options);
   validate(edge);
   if (hint) require_finite(*hint, "load.arc_length_hint");
@@ -54,7 +62,7 @@ Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std:
     u0 = Eigen::Vector3d(0.0, 0.0, std::clamp(*hint, 1e-6 * sc.length, w.length()) / sc.length);
   else
     u0 = detail::cold_edge_start(w, sc, g, s_near);
-  detail::EdgeAttempt a = detail::attempt_edge(w, sc, g, 0.0, u0, options);
+  detail::EdgeAttempt a = detail::attempt_edge(w, sc, g, 0.0, u0, options, known);
   if (a.status == Status::not_converged && (warm || hint)) {
     detail::EdgeAttempt cold =
         detail::attempt_edge(w, sc, g, 0.0, Eigen::Vector3d(0.0, 0.0, s_near / sc.length), options);
@@ -95,5 +103,7 @@ Solution solve_edge(const Whisker& w, const Placement& X, const Edge& edge, std:
   }
   return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
 }
+
+}  // namespace detail
 
 }  // namespace vibrissa

@@ -14,9 +14,10 @@ EdgeGeometryB edge_in_body(const Placement& X, const Edge& edge) {
 }
 
 EdgeAttempt attempt_edge(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double c,
-                         const Eigen::Vector3d& u0, const SolveOptions& options) {
+                         const Eigen::Vector3d& u0, const SolveOptions& options, const ContactEvaluations* known) {
   const Eigen::Vector3d q = g.point / sc.length;
   EdgeAttempt a;
+  if (known) a.evaluations = *known;
   auto residual = [&](const auto& u) {
     using S = std::decay_t<decltype(u[0])>;
     const auto k = a.evaluations.contact_at<S>(w, sc, u);

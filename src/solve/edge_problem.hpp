@@ -25,9 +25,16 @@ struct EdgeAttempt {
   ContactEvaluations evaluations;  ///< the last kinematics evaluated (the solved point's among them)
 };
 
-/// Solves the edge equations with friction factor c from scaled unknowns u0.
+/// Solves the edge equations with friction factor c from scaled unknowns u0. `known`: evaluations already made
+/// for this whisker (reused where the attempt evaluates at exactly their load).
 EdgeAttempt attempt_edge(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double c,
-                         const Eigen::Vector3d& u0, const SolveOptions& options);
+                         const Eigen::Vector3d& u0, const SolveOptions& options,
+                         const ContactEvaluations* known = nullptr);
+
+/// solve_edge() whose first attempt reuses `known` evaluations (nullptr: none).
+Solution solve_edge_from(const Whisker& w, const Placement& X_WB, const Edge& edge, std::optional<double> hint,
+                         const SolveOptions& options, const LoadState* warm,
+                         const std::optional<Eigen::Vector3d>& approach_W, const ContactEvaluations* known);
 
 /// Globalisation by continuation when a direct solve fails: the line is moved from where it just touches
 /// the rest whisker (exact solution: zero force at the nearest rest point) to its true place in adaptive

@@ -27,7 +27,13 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
   SolveOptions inner = options;
   inner.compute_shape = false;
   inner.find_other_roots = false;
-  const Solution free = solve_edge(w, X, edge, std::nullopt, inner, warm, approach_W);
+  // Both the frictionless and the stick solve start at the previous frame's state: one Jacobian there serves
+  // both (their first evaluation).
+  const detail::Scales sc(w);
+  detail::ContactEvaluations at_warm;
+  if (warm) at_warm.evaluate_jacobian_at(w, sc, detail::unknowns_from_state(*warm, sc));
+  const detail::ContactEvaluations* known = warm ? &at_warm : nullptr;
+  const Solution free = detail::solve_edge_from(w, X, edge, std::nullopt, inner, warm, approach_W, known);
   // The reported Solution: outputs from the final state (with the caller's options), typed outcome. A
   // converged inner solve already filled them for the same state and edge direction: without a shape they
   // are copied (evaluations: the slip attempt's, whose converged point they hold).
@@ -50,7 +56,7 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
 
   // 2. Stick at the previous contact.
   const LoadState* stick_start = warm ? warm : &free.state;
-  Solution stick = solve_point(w, X, q_prev, std::nullopt, inner, stick_start, d);
+  Solution stick = detail::solve_point_from(w, X, q_prev, std::nullopt, inner, stick_start, d, known);
   if (stick.status == Status::converged) {
     detail::check_contact_side(w, X, approach_W, stick);
     if (stick.status == Status::converged && std::abs(*stick.edge_force) <= mu * *stick.normal_force * (1.0 + 1e-9)) {
@@ -64,7 +70,6 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
   if (travel == 0.0)
     return finish(free, FrictionState::slip, "slip: previous contact coincides with the frictionless point");
   const double sigma = travel > 0.0 ? 1.0 : -1.0;
-  const detail::Scales sc(w);
   const detail::EdgeGeometryB g = detail::edge_in_body(X, edge);
   detail::EdgeAttempt best;
   for (const LoadState* start : {stick.status == Status::converged ? &stick.state : &free.state, &free.state}) {

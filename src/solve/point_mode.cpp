@@ -25,9 +25,11 @@ struct PointAttempt {
 };
 
 PointAttempt attempt_point(const Whisker& w, const detail::Scales& sc, const Eigen::Vector3d& target_B,
-                           const Eigen::Vector3d& u0, const SolveOptions& options) {
+                           const Eigen::Vector3d& u0, const SolveOptions& options,
+                           const detail::ContactEvaluations* known = nullptr) {
   const Eigen::Vector3d t = target_B / sc.length;
   PointAttempt a;
+  if (known) a.evaluations = *known;
   auto residual = [&](const auto& u) {
     using S = std::decay_t<decltype(u[0])>;
     const auto c = a.evaluations.contact_at<S>(w, sc, u);
@@ -127,6 +129,13 @@ Eigen::Vector3d cold_point_start(const Whisker& w, const detail::Scales& sc, con
 Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d& point_W, std::optional<double> hint,
                      const SolveOptions& options, const LoadState* warm,
                      const std::optional<Eigen::Vector3d>& edge_direction_W) {
+  return detail::solve_point_from(w, X, point_W, hint, options, warm, edge_direction_W, nullptr);
+}
+
+Solution detail::solve_point_from(const Whisker& w, const Placement& X, const Eigen::Vector3d& point_W,
+                                  std::optional<double> hint, const SolveOptions& options, const LoadState* warm,
+                                  const std::optional<Eigen::Vector3d>& edge_direction_W,
+                                  const ContactEvaluations* known) {
   validate(options);
   require_finite(point_W, "load.point");
   if (hint) require_finite(*hint, "load.arc_length_hint");
@@ -149,7 +158,7 @@ Solution solve_point(const Whisker& w, const Placement& X, const Eigen::Vector3d
   } else {
     u0 = cold_point_start(w, sc, target_B);
   }
-  PointAttempt a = attempt_point(w, sc, target_B, u0, options);
+  PointAttempt a = attempt_point(w, sc, target_B, u0, options, known);
   std::vector<Root> roots;
   if (!warm && (hint || options.find_other_roots)) {  // a warm frame keeps its root: no probing (issue 13)
     // Scan: start near the hint and all along the whisker, each start with the force that the linearised
