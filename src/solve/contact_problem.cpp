@@ -191,19 +191,26 @@ double cantilever_compliance(const Whisker& w, double s) {
   return c;
 }
 
-Eigen::Vector3d cantilever_start(const Whisker& w, const Scales& sc, double s, const Eigen::Vector3d& displacement_B) {
-  int k;
-  double h;
-  w.locate(s, k, h);
+std::optional<Eigen::Vector3d> cantilever_start(const Whisker& w, const Scales& sc, const Eigen::Vector3d& target_B,
+                                                const Eigen::Vector3d& along) {
+  auto across = [&](const Eigen::Vector3d& p) { return p - p.dot(along) * along; };
+  const double s = arc_length_at_distance(w, across(target_B).norm(), along);
+  const Eigen::Vector3d p = w.rest_point_B(s);
+  const double turn = std::atan2(across(p).cross(across(target_B)).norm(), across(p).dot(across(target_B)));
+  if (!(turn <= max_cantilever_turn)) return std::nullopt;
+  const Eigen::Vector3d displacement_B = across(target_B - p);
   const double c = cantilever_compliance(w, s);
-  if (!(c > 0.0)) return {0.0, 0.0, s / sc.length};
+  if (!(c > 0.0)) return Eigen::Vector3d(0.0, 0.0, s / sc.length);
   const Eigen::Vector3d F_B = displacement_B / (c * sc.force);
   if (w.properties().scheme == Scheme::paper) {  // its unknowns are components in Elastica3D's load frame
     const Axes<double> frame = published_rest_load_frame(w, s);
-    return {F_B.dot(to_eigen(frame.y)), F_B.dot(to_eigen(frame.z)), s / sc.length};
+    return Eigen::Vector3d(F_B.dot(to_eigen(frame.y)), F_B.dot(to_eigen(frame.z)), s / sc.length);
   }
+  int k;
+  double h;
+  w.locate(s, k, h);
   const Eigen::Matrix3d& R = w.rest_link_frames_B()[static_cast<std::size_t>(k)];  // tangent, normal, binormal
-  return {F_B.dot(R.col(1)), F_B.dot(R.col(2)), s / sc.length};
+  return Eigen::Vector3d(F_B.dot(R.col(1)), F_B.dot(R.col(2)), s / sc.length);
 }
 
 }  // namespace vibrissa::detail

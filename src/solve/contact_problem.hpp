@@ -131,9 +131,12 @@ double cantilever_compliance(const Whisker& w, double s);
 /// equilibria a solve reaches depends on its path: those start from zero force, as before issue 13.
 inline constexpr double max_cantilever_turn = 0.5;
 
-/// Scaled unknowns (F_y, F_z, s) of the normal force at arc length s that moves the rest whisker's point there
-/// by `displacement_B` as a linear cantilever (its component normal to the rest tangent): the beam-theory
-/// first guess of cold solves (as Elastica3D starts its search).
-Eigen::Vector3d cantilever_start(const Whisker& w, const Scales& sc, double s, const Eigen::Vector3d& displacement_B);
+/// The beam-theory first guess of a cold solve (as Elastica3D starts its search), toward `target_B` seen along
+/// the unit vector `along` (a line through it; zero: the point itself): scaled unknowns (F_y, F_z, s) with s
+/// where the rest whisker, seen so, is as far from the base as the target (a rotation about the base keeps
+/// that distance) and the normal force that moves that point there as a linear cantilever. nullopt if the
+/// point must turn about the base by more than max_cantilever_turn.
+std::optional<Eigen::Vector3d> cantilever_start(const Whisker& w, const Scales& sc, const Eigen::Vector3d& target_B,
+                                                const Eigen::Vector3d& along);
 
 }  // namespace vibrissa::detail

@@ -103,12 +103,7 @@ double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g, bool& w
 }
 
 Eigen::Vector3d cold_edge_start(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double s_near) {
-  auto across = [&](const Eigen::Vector3d& p) { return p - p.dot(g.direction) * g.direction; };
-  const double s = arc_length_at_distance(w, across(g.point).norm(), g.direction);
-  const Eigen::Vector3d p = w.rest_point_B(s);
-  const double turn = std::atan2(across(p).cross(across(g.point)).norm(), across(p).dot(across(g.point)));
-  if (!(turn <= max_cantilever_turn)) return {0.0, 0.0, s_near / sc.length};
-  return cantilever_start(w, sc, s, across(g.point - p));
+  return cantilever_start(w, sc, g.point, g.direction).value_or(Eigen::Vector3d(0.0, 0.0, s_near / sc.length));
 }
 
 }  // namespace vibrissa::detail

@@ -112,16 +112,11 @@ Eigen::Vector3d fixed_arc_length_start(const Whisker& w, const detail::Scales& s
   return {f[0], f[1], s};
 }
 
-/// Scaled unknowns from which a cold solve without a hint starts: the arc length at which the rest whisker is
-/// as far from the base as the target (a rotation about the base keeps that distance), with the cantilever
-/// force that moves that point to the target (beam theory, as Elastica3D starts) if it turns by at most
-/// detail::max_cantilever_turn, else zero force (which of several roots is reached then depends on the path).
+/// Scaled unknowns from which a cold solve without a hint starts: the cantilever guess toward the target
+/// (detail::cantilever_start), else zero force where the rest whisker is as far from the base as the target.
 Eigen::Vector3d cold_point_start(const Whisker& w, const detail::Scales& sc, const Eigen::Vector3d& target_B) {
-  const double s = detail::arc_length_at_distance(w, target_B.norm());
-  const Eigen::Vector3d p = w.rest_point_B(s);
-  const double turn = std::atan2(p.cross(target_B).norm(), p.dot(target_B));
-  if (!(turn <= detail::max_cantilever_turn)) return {0.0, 0.0, s / sc.length};
-  return detail::cantilever_start(w, sc, s, target_B - p);
+  if (auto u = detail::cantilever_start(w, sc, target_B, Eigen::Vector3d::Zero())) return *u;
+  return {0.0, 0.0, detail::arc_length_at_distance(w, target_B.norm()) / sc.length};
 }
 
 }  // namespace
