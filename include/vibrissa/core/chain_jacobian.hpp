@@ -17,9 +17,18 @@ namespace vibrissa {
 
 /// deflect() of the second-order scheme on Dual<3> inputs by analytic tangents (the derivatives of the
 /// outputs along the three derivative directions of the inputs). Values equal deflect<double>'s bit for bit.
+/// Where the CPU has AVX2 the three directions run side by side in vector lanes (same numbers).
 /// The paper scheme falls back to deflect_published<Dual<3>>.
 ContactKinematics<Dual<3>> deflect_analytic(const Whisker& w, const V3<Dual<3>>& force_L,
                                             const V3<Dual<3>>& couple_L, const Dual<3>& s);
+
+namespace detail {
+/// deflect_analytic() in its portable build (one vector per derivative direction), the one that runs where the
+/// CPU lacks AVX2; elsewhere deflect_analytic() runs the three directions in vector lanes. The two give the
+/// same numbers bit for bit (tested).
+ContactKinematics<Dual<3>> deflect_analytic_portable(const Whisker& w, const V3<Dual<3>>& force_L,
+                                                     const V3<Dual<3>>& couple_L, const Dual<3>& s);
+}  // namespace detail
 
 /// deflect() for the solvers: doubles as they are, Dual<3> through deflect_analytic().
 template <class S>
