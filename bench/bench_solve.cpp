@@ -5,8 +5,6 @@
 #include <benchmark/benchmark.h>
 
 #include <numbers>
-#include <string>
-#include <utility>
 
 #include "vibrissa/core/chain_jacobian.hpp"
 #include "vibrissa/solve/solvers.hpp"
@@ -71,73 +69,106 @@ void BM_ForwardAnalyticJacobian(benchmark::State& state) {
 }
 BENCHMARK(BM_ForwardAnalyticJacobian);
 
-// Each contact solve runs with the default options (names as in issue 13's table) and with
-// SolveOptions::secant_jacobians (suffix "Secant"; results equal to within the tolerance, not to rounding).
-void BM_EdgeCold(benchmark::State& state, const SolveOptions& o) {
+void BM_EdgeCold(benchmark::State& state) {
   const Whisker w = bench_whisker();
   const Edge peg = bench_peg();
-  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, peg, std::nullopt, o));
-  state.counters["iterations"] = solve_edge(w, peg, std::nullopt, o).iterations;
+  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, peg, std::nullopt, fast()));
+  state.counters["iterations"] = solve_edge(w, peg, std::nullopt, fast()).iterations;
 }
+BENCHMARK(BM_EdgeCold);
 
-void BM_EdgeWarm(benchmark::State& state, const SolveOptions& o) {
-  // Warm start from the previous frame of a 1 kHz whisk (0.05 deg of protraction earlier), solved cold.
+void BM_EdgeWarm(benchmark::State& state) {
+  // Warm start from the previous frame of a 1 kHz whisk (0.05 deg of protraction earlier).
   const Whisker w = bench_whisker();
   Pose prev = w.placement().pose();
   prev.theta -= 0.05 * std::numbers::pi / 180.0;
-  const Solution before = solve_edge(w, prev, bench_peg(), std::nullopt, o);
-  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, o, &before.state));
-  state.counters["iterations"] = solve_edge(w, bench_peg(), std::nullopt, o, &before.state).iterations;
+  const Solution before = solve_edge(w, prev, bench_peg(), std::nullopt, fast());
+  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, fast(), &before.state));
+  state.counters["iterations"] = solve_edge(w, bench_peg(), std::nullopt, fast(), &before.state).iterations;
 }
+BENCHMARK(BM_EdgeWarm);
 
-void BM_EdgeTracked(benchmark::State& state, const SolveOptions& o) {
-  // A frame of a tracked 1 kHz whisk: the previous frame was itself warm-started, ten frames from a cold one.
+void BM_PointCold(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
+  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, fast()));
+  state.counters["iterations"] = solve_point(w, target, std::nullopt, fast()).iterations;
+}
+BENCHMARK(BM_PointCold);
+
+void BM_PointWarm(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
+  const Solution near = solve_point(w, target + Eigen::Vector3d(0, 0, 2e-5), std::nullopt, fast());
+  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, fast(), &near.state));
+  state.counters["iterations"] = solve_point(w, target, std::nullopt, fast(), &near.state).iterations;
+}
+BENCHMARK(BM_PointWarm);
+
+void BM_FrictionalEdgeWarm(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  const Solution free = solve_edge(w, bench_peg(), std::nullopt, fast());
+  const Eigen::Vector3d previous = free.contact_point_W - Eigen::Vector3d(0, 0, 2e-3);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(solve_frictional_edge(w, bench_peg(), 0.48, previous, fast(), &free.state));
+  state.counters["iterations"] = solve_frictional_edge(w, bench_peg(), 0.48, previous, fast(), &free.state).iterations;
+}
+BENCHMARK(BM_FrictionalEdgeWarm);
+
+// The same solves with SolveOptions::secant_jacobians (results equal to within the tolerance, not to rounding).
+void BM_EdgeColdSecant(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  const Edge peg = bench_peg();
+  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, peg, std::nullopt, secant()));
+}
+BENCHMARK(BM_EdgeColdSecant);
+
+void BM_EdgeWarmSecant(benchmark::State& state) {  // as BM_EdgeWarm: the previous frame was solved cold
+  const Whisker w = bench_whisker();
+  Pose prev = w.placement().pose();
+  prev.theta -= 0.05 * std::numbers::pi / 180.0;
+  const Solution before = solve_edge(w, prev, bench_peg(), std::nullopt, secant());
+  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, secant(), &before.state));
+}
+BENCHMARK(BM_EdgeWarmSecant);
+
+void BM_EdgeTrackedSecant(benchmark::State& state) {
+  // A frame of a tracked 1 kHz whisk: the previous frame was itself warm-started from ten frames before it.
   const Whisker w = bench_whisker();
   Solution before;
   for (int i = 10; i >= 1; --i) {
     Pose p = w.placement().pose();
     p.theta -= i * 0.05 * std::numbers::pi / 180.0;
-    before = solve_edge(w, p, bench_peg(), std::nullopt, o, i == 10 ? nullptr : &before.state);
+    before = solve_edge(w, p, bench_peg(), std::nullopt, secant(), i == 10 ? nullptr : &before.state);
   }
-  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, o, &before.state));
-  state.counters["iterations"] = solve_edge(w, bench_peg(), std::nullopt, o, &before.state).iterations;
+  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, secant(), &before.state));
 }
+BENCHMARK(BM_EdgeTrackedSecant);
 
-void BM_PointCold(benchmark::State& state, const SolveOptions& o) {
+void BM_PointColdSecant(benchmark::State& state) {
   const Whisker w = bench_whisker();
   const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
-  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, o));
-  state.counters["iterations"] = solve_point(w, target, std::nullopt, o).iterations;
+  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, secant()));
 }
+BENCHMARK(BM_PointColdSecant);
 
-void BM_PointWarm(benchmark::State& state, const SolveOptions& o) {
+void BM_PointWarmSecant(benchmark::State& state) {
   const Whisker w = bench_whisker();
   const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
-  const Solution near = solve_point(w, target + Eigen::Vector3d(0, 0, 2e-5), std::nullopt, o);
-  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, o, &near.state));
-  state.counters["iterations"] = solve_point(w, target, std::nullopt, o, &near.state).iterations;
+  const Solution near = solve_point(w, target + Eigen::Vector3d(0, 0, 2e-5), std::nullopt, secant());
+  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, secant(), &near.state));
 }
+BENCHMARK(BM_PointWarmSecant);
 
-void BM_FrictionalEdgeWarm(benchmark::State& state, const SolveOptions& o) {
+void BM_FrictionalEdgeWarmSecant(benchmark::State& state) {
   const Whisker w = bench_whisker();
-  const Solution free = solve_edge(w, bench_peg(), std::nullopt, o);
+  const Solution free = solve_edge(w, bench_peg(), std::nullopt, secant());
   const Eigen::Vector3d previous = free.contact_point_W - Eigen::Vector3d(0, 0, 2e-3);
-  for (auto _ : state) benchmark::DoNotOptimize(solve_frictional_edge(w, bench_peg(), 0.48, previous, o, &free.state));
-  state.counters["iterations"] = solve_frictional_edge(w, bench_peg(), 0.48, previous, o, &free.state).iterations;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(solve_frictional_edge(w, bench_peg(), 0.48, previous, secant(), &free.state));
 }
+BENCHMARK(BM_FrictionalEdgeWarmSecant);
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  using Solve = void (*)(benchmark::State&, const SolveOptions&);
-  const std::pair<const char*, Solve> solves[] = {{"BM_EdgeCold", BM_EdgeCold},   {"BM_EdgeWarm", BM_EdgeWarm},
-                                                  {"BM_EdgeTracked", BM_EdgeTracked}, {"BM_PointCold", BM_PointCold},
-                                                  {"BM_PointWarm", BM_PointWarm}, {"BM_FrictionalEdgeWarm", BM_FrictionalEdgeWarm}};
-  for (const auto& [name, solve] : solves) benchmark::RegisterBenchmark(name, solve, fast());
-  for (const auto& [name, solve] : solves) benchmark::RegisterBenchmark((std::string(name) + "Secant").c_str(), solve, secant());
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+BENCHMARK_MAIN();
