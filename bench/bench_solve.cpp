@@ -30,11 +30,6 @@ SolveOptions fast() {
   o.compute_shape = false;
   return o;
 }
-SolveOptions secant() {  // SolveOptions::secant_jacobians: Broyden Jacobians, carried between frames
-  SolveOptions o = fast();
-  o.secant_jacobians = true;
-  return o;
-}
 
 void BM_Forward(benchmark::State& state) {
   const Whisker w = bench_whisker();
@@ -114,60 +109,6 @@ void BM_FrictionalEdgeWarm(benchmark::State& state) {
   state.counters["iterations"] = solve_frictional_edge(w, bench_peg(), 0.48, previous, fast(), &free.state).iterations;
 }
 BENCHMARK(BM_FrictionalEdgeWarm);
-
-// The same solves with SolveOptions::secant_jacobians (results equal to within the tolerance, not to rounding).
-void BM_EdgeColdSecant(benchmark::State& state) {
-  const Whisker w = bench_whisker();
-  const Edge peg = bench_peg();
-  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, peg, std::nullopt, secant()));
-}
-BENCHMARK(BM_EdgeColdSecant);
-
-void BM_EdgeWarmSecant(benchmark::State& state) {  // as BM_EdgeWarm: the previous frame was solved cold
-  const Whisker w = bench_whisker();
-  Pose prev = w.placement().pose();
-  prev.theta -= 0.05 * std::numbers::pi / 180.0;
-  const Solution before = solve_edge(w, prev, bench_peg(), std::nullopt, secant());
-  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, secant(), &before.state));
-}
-BENCHMARK(BM_EdgeWarmSecant);
-
-void BM_EdgeTrackedSecant(benchmark::State& state) {
-  // A frame of a tracked 1 kHz whisk: the previous frame was itself warm-started from ten frames before it.
-  const Whisker w = bench_whisker();
-  Solution before;
-  for (int i = 10; i >= 1; --i) {
-    Pose p = w.placement().pose();
-    p.theta -= i * 0.05 * std::numbers::pi / 180.0;
-    before = solve_edge(w, p, bench_peg(), std::nullopt, secant(), i == 10 ? nullptr : &before.state);
-  }
-  for (auto _ : state) benchmark::DoNotOptimize(solve_edge(w, bench_peg(), std::nullopt, secant(), &before.state));
-}
-BENCHMARK(BM_EdgeTrackedSecant);
-
-void BM_PointColdSecant(benchmark::State& state) {
-  const Whisker w = bench_whisker();
-  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
-  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, secant()));
-}
-BENCHMARK(BM_PointColdSecant);
-
-void BM_PointWarmSecant(benchmark::State& state) {
-  const Whisker w = bench_whisker();
-  const Eigen::Vector3d target = solve_edge(w, bench_peg()).contact_point_W + Eigen::Vector3d(0, 0, 1e-3);
-  const Solution near = solve_point(w, target + Eigen::Vector3d(0, 0, 2e-5), std::nullopt, secant());
-  for (auto _ : state) benchmark::DoNotOptimize(solve_point(w, target, std::nullopt, secant(), &near.state));
-}
-BENCHMARK(BM_PointWarmSecant);
-
-void BM_FrictionalEdgeWarmSecant(benchmark::State& state) {
-  const Whisker w = bench_whisker();
-  const Solution free = solve_edge(w, bench_peg(), std::nullopt, secant());
-  const Eigen::Vector3d previous = free.contact_point_W - Eigen::Vector3d(0, 0, 2e-3);
-  for (auto _ : state)
-    benchmark::DoNotOptimize(solve_frictional_edge(w, bench_peg(), 0.48, previous, secant(), &free.state));
-}
-BENCHMARK(BM_FrictionalEdgeWarmSecant);
 
 }  // namespace
 

@@ -70,32 +70,26 @@ void bind_solve(py::module_& m) {
         "Status from its JSON name; ValueError for an unknown name.");
 
   py::class_<SolveOptions>(m, "SolveOptions", "Options of every solve.")
-      .def(py::init([](double tolerance, int max_iterations, bool compute_shape, bool find_other_roots,
-                       bool secant_jacobians) {
+      .def(py::init([](double tolerance, int max_iterations, bool compute_shape, bool find_other_roots) {
              SolveOptions o;
              o.tolerance = tolerance;
              o.max_iterations = max_iterations;
              o.compute_shape = compute_shape;
              o.find_other_roots = find_other_roots;
-             o.secant_jacobians = secant_jacobians;
              return o;
            }),
            py::kw_only(), py::arg("tolerance") = 1e-12, py::arg("max_iterations") = 100,
-           py::arg("compute_shape") = true, py::arg("find_other_roots") = false, py::arg("secant_jacobians") = false)
+           py::arg("compute_shape") = true, py::arg("find_other_roots") = false)
       .def_readwrite("tolerance", &SolveOptions::tolerance, "Contact residual to reach [m].")
       .def_readwrite("max_iterations", &SolveOptions::max_iterations, "Levenberg-Marquardt iterations per attempt.")
       .def_readwrite("compute_shape", &SolveOptions::compute_shape, "Fill Solution.shape (one extra O(N) pass).")
       .def_readwrite("find_other_roots", &SolveOptions::find_other_roots,
                      "Probe for a second root and report it (about 2 extra solves).")
-      .def_readwrite("secant_jacobians", &SolveOptions::secant_jacobians,
-                     "Quasi-Newton: Broyden secant Jacobians within a solve and from a warm state's solve; faster "
-                     "tracked frames, results to within the tolerance rather than rounding (docs/performance.md).")
       .def("__repr__", [](const SolveOptions& o) {
         return "SolveOptions(tolerance=" + std::string(py::str(py::float_(o.tolerance))) +
                ", max_iterations=" + std::to_string(o.max_iterations) +
                ", compute_shape=" + (o.compute_shape ? "True" : "False") +
-               ", find_other_roots=" + (o.find_other_roots ? "True" : "False") +
-               ", secant_jacobians=" + (o.secant_jacobians ? "True" : "False") + ")";
+               ", find_other_roots=" + (o.find_other_roots ? "True" : "False") + ")";
       });
 
   py::class_<Edge>(m, "Edge", "A straight edge: the infinite line through `point` along `direction` (world). A peg is one edge.")
@@ -122,12 +116,7 @@ void bind_solve(py::module_& m) {
   py::class_<LoadState>(m, "LoadState",
                         "Unknowns of a contact solve (force in the loaded link's frame [N], contact arc length [m]); "
                         "pass a previous solution's state (or the solution itself) as `warm` to warm-start.")
-      .def(py::init([](double fx, double fy, double fz, double s) { LoadState state;
-        state.force_x = fx;
-        state.force_y = fy;
-        state.force_z = fz;
-        state.arc_length = s;
-        return state; }),
+      .def(py::init([](double fx, double fy, double fz, double s) { return LoadState{fx, fy, fz, s}; }),
            py::kw_only(), py::arg("force_x") = 0.0, py::arg("force_y") = 0.0, py::arg("force_z") = 0.0,
            py::arg("arc_length") = 0.0)
       .def_readwrite("force_x", &LoadState::force_x, "Axial component [N].")

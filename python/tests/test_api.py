@@ -142,23 +142,6 @@ def test_warm_start_accepts_state_or_solution(whisker):
     assert a.iterations <= 6
 
 
-def test_secant_jacobians_track_the_same_roots(whisker):
-    # SolveOptions(secant_jacobians=True): Broyden Jacobians, carried from a solution's state to the next frame.
-    # Same roots as the default (contact points within a few tolerances), and the option appears in repr.
-    newton = SolveOptions(compute_shape=False)
-    secant = SolveOptions(compute_shape=False, secant_jacobians=True)
-    assert "secant_jacobians=True" in repr(secant)
-    a = b = None
-    for i in range(20):
-        target = [0.02, 0.004 + 1e-5 * i, 0.0]
-        a = vibrissa.solve_point(whisker, target, options=newton, warm=a)
-        b = vibrissa.solve_point(whisker, target, options=secant, warm=b)
-        assert a.status == b.status == Status.converged
-        assert np.linalg.norm(np.subtract(a.contact_point_W, b.contact_point_W)) <= 5e-12
-        assert b.force_magnitude == pytest.approx(a.force_magnitude, rel=1e-6)
-        assert b.arc_length == pytest.approx(a.arc_length, rel=1e-6)
-
-
 def test_status_enum():
     assert [s.label for s in Status.__members__.values()] == list(vibrissa.STATUS_NAMES)
     assert vibrissa.status_from_string("slipped_off") == Status.slipped_off

@@ -155,9 +155,8 @@ class SolveOptions:
     max_iterations: int
     compute_shape: bool
     find_other_roots: bool
-    secant_jacobians: bool
     def __init__(self, *, tolerance: float = 1e-12, max_iterations: int = 100, compute_shape: bool = True,
-                 find_other_roots: bool = False, secant_jacobians: bool = False) -> None: ...
+                 find_other_roots: bool = False) -> None: ...
 
 class Edge:
     def __init__(self, point: ArrayLike, direction: ArrayLike = (0.0, 0.0, 1.0)) -> None: ...

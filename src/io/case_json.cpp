@@ -230,14 +230,12 @@ Case case_from_json(const json& j) {
   o.find_other_roots = true;
   if (j.contains("options")) {
     const json& oj = j.at("options");
-    reject_unknown(oj, "options", {"tolerance", "max_iterations", "find_other_roots", "compute_shape", "secant_jacobians"});
+    reject_unknown(oj, "options", {"tolerance", "max_iterations", "find_other_roots", "compute_shape"});
     o.tolerance = number_or(oj, "tolerance", "options", o.tolerance);
     if (oj.contains("max_iterations"))
       o.max_iterations = io::json_integer(oj.at("max_iterations"), "options.max_iterations", 1, limits::max_iterations);
     if (oj.contains("find_other_roots")) o.find_other_roots = io::json_bool(oj.at("find_other_roots"), "options.find_other_roots");
     if (oj.contains("compute_shape")) o.compute_shape = io::json_bool(oj.at("compute_shape"), "options.compute_shape");
-    if (oj.contains("secant_jacobians"))
-      o.secant_jacobians = io::json_bool(oj.at("secant_jacobians"), "options.secant_jacobians");
     validate(o);
   }
   return Case{whisker_from_json(j.at("whisker")), load_from_json(j.at("load")), o};

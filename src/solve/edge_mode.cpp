@@ -56,11 +56,9 @@ Solution solve_edge_from(const Whisker& w, const Placement& X, const Edge& edge,
     return detail::unloaded_solution(w, X, Status::no_contact, "the edge is out of the whisker's reach", options);
 
   Eigen::Vector3d u0;
-  detail::ContactEvaluations carried;  // what the solve that produced `warm` left with it
-  if (warm) {
-    u0 = options.secant_jacobians ? carried.start_at(w, sc, *warm) : detail::unknowns_from_state(*warm, sc);
-    if (!known) known = &carried;
-  } else if (hint)
+  if (warm)
+    u0 = detail::unknowns_from_state(*warm, sc);
+  else if (hint)
     u0 = Eigen::Vector3d(0.0, 0.0, std::clamp(*hint, 1e-6 * sc.length, w.length()) / sc.length);
   else
     u0 = detail::cold_edge_start(w, sc, g, s_near);

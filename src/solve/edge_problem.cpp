@@ -33,8 +33,7 @@ EdgeAttempt attempt_edge(const Whisker& w, const Scales& sc, const EdgeGeometryB
     }
     return std::array<S, 3>{dot(rel, e1), dot(rel, e2), along};
   };
-  a.lm = levenberg_marquardt(residual, u0, contact_bounds(), options.tolerance / sc.length, options.max_iterations,
-                             options.secant_jacobians ? &a.evaluations : nullptr);
+  a.lm = levenberg_marquardt(residual, u0, contact_bounds(), options.tolerance / sc.length, options.max_iterations);
   if (a.lm.converged)
     a.status = a.lm.u[2] > 1.0 + 1e-12 ? Status::slipped_off : Status::converged;
   else

@@ -7,10 +7,6 @@
 // convergence near the root); damping grows only when a step fails to reduce the residual, which globalises
 // the method for thin, compliant tips. When M != 3 a fit also converges at a stationary point of the squares
 // (|J^T r| <= tolerance * max|J|), since an over-determined fit need not reach zero residual.
-// Quasi-Newton (given JacobianEstimates): after an accepted step that shrank the residual at least
-// secant_contraction times, the next Jacobian is a secant estimate instead of an evaluation (Broyden); a step
-// from an estimate that fails to reduce the residual is taken again from the exact Jacobian, so damping grows
-// only on exact Jacobians, as without estimates.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -38,27 +34,6 @@ struct LMBounds {
   Eigen::Vector3d upper = Eigen::Vector3d::Constant(1e300);
 };
 
-/// Jacobian estimates a residual's evaluations can provide (ContactEvaluations).
-class JacobianEstimates {
- public:
-  /// Makes the next Jacobian evaluation at u (whose value was evaluated last) an estimate: false if none can be made.
-  virtual bool estimate_at(const Eigen::Vector3d& u) = 0;
-  /// Whether the Jacobian last served is an estimate.
-  [[nodiscard]] virtual bool estimated() const = 0;
-  /// Drops an estimate: the next Jacobian evaluation is exact.
-  virtual void forget_estimate() = 0;
-
- protected:
-  JacobianEstimates() = default;
-  JacobianEstimates(const JacobianEstimates&) = default;
-  JacobianEstimates& operator=(const JacobianEstimates&) = default;
-  ~JacobianEstimates() = default;
-};
-
-/// An accepted step must shrink the max-norm of the residual by this factor for the next Jacobian to be a
-/// secant estimate (close enough to the root that the estimate's error is smaller than the step's gain).
-inline constexpr double secant_contraction = 0.1;
-
 /// Number of residuals of a functor (the size of the array it returns).
 template <class Residual>
 inline constexpr int residual_count =
@@ -85,7 +60,7 @@ void evaluate(Residual& f, const Eigen::Vector3d& u, Eigen::Matrix<double, M, 1>
 
 template <class Residual>
 LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bounds, double tolerance,
-                             int max_iterations, JacobianEstimates* estimates = nullptr) {
+                             int max_iterations) {
   constexpr int M = residual_count<std::remove_reference_t<Residual>>;
   using Vec = Eigen::Matrix<double, M, 1>;
   using Jac = Eigen::Matrix<double, M, 3>;
@@ -119,19 +94,9 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
       out.converged = true;
       break;
     }
-    Eigen::Matrix3d A = J.transpose() * J;
-    Eigen::Vector3d g = J.transpose() * r;
-    double scale = std::max(A.diagonal().maxCoeff(), 1e-300);
-    // A failed step from an estimated Jacobian: the exact one at u instead (true), or damping as usual.
-    auto exact_instead = [&] {
-      if (!estimates || !estimates->estimated()) return false;
-      estimates->forget_estimate();
-      evaluate_with_jacobian(f, u, r, J);
-      A = J.transpose() * J;
-      g = J.transpose() * r;
-      scale = std::max(A.diagonal().maxCoeff(), 1e-300);
-      return true;
-    };
+    const Eigen::Matrix3d A = J.transpose() * J;
+    const Eigen::Vector3d g = J.transpose() * r;
+    const double scale = std::max(A.diagonal().maxCoeff(), 1e-300);
     bool accepted = false;
     for (int attempt = 0; attempt < 30 && !accepted; ++attempt) {
       Eigen::Vector3d step;
@@ -144,8 +109,7 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
         step = -A_damped.ldlt().solve(g);
       }
       if (!step.allFinite()) {
-        if (exact_instead()) --attempt;
-        else lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
+        lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
         continue;
       }
       const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
@@ -156,22 +120,13 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
       const double cost_new = r_new.squaredNorm();
       if (r_new.allFinite() && cost_new < cost) {
         const bool tiny = (u_new - u).cwiseAbs().maxCoeff() <= 1e-16 * std::max(1.0, u.cwiseAbs().maxCoeff());
-        const double r_max = r_new.cwiseAbs().maxCoeff();
         u = u_new;
-        if (M != 3 || r_max > tolerance) {
-          if (estimates) {
-            const bool secant = r_max <= secant_contraction * r.cwiseAbs().maxCoeff() && estimates->estimate_at(u);
-            if (!secant) estimates->forget_estimate();
-          }
-          evaluate_with_jacobian(f, u, r_new, J);
-        }
+        if (M != 3 || r_new.cwiseAbs().maxCoeff() > tolerance) evaluate_with_jacobian(f, u, r_new, J);
         r = r_new;
         cost = r.squaredNorm();
         accepted = true;
         lambda = lambda < 1e-9 * scale ? 0.0 : lambda / 10.0;
         if (tiny) break;
-      } else if (exact_instead()) {
-        --attempt;  // the same step, from the exact Jacobian (same damping)
       } else {
         lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
       }

@@ -10,13 +10,6 @@ struct SolveOptions {
   int max_iterations = 100;       ///< Levenberg-Marquardt iterations per attempt
   bool compute_shape = true;      ///< fill Solution::shape_W (costs one extra O(N) pass)
   bool find_other_roots = false;  ///< probe for a second root and report it (cold solves only; costs extra solves)
-  /// Quasi-Newton: once a step has shrunk the residual tenfold, further Jacobians are Broyden secant updates
-  /// instead of evaluations, and a warm start from a state this option produced begins with the estimate that
-  /// solve left with it (LoadSensitivity). A tracked frame then costs ~4 forward evaluations instead of ~7.5
-  /// (docs/performance.md). The root is the same, but the result is reached only to within the tolerance
-  /// (Newton's last step usually lands far inside it), so results differ from the default's at the
-  /// tolerance's level and depend on the state's history; off by default.
-  bool secant_jacobians = false;
 };
 
 /// Throws std::invalid_argument naming the field unless tolerance lies in (0, 1e-3] and max_iterations in

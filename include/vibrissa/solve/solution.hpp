@@ -1,7 +1,6 @@
 #pragma once
 // Everything a solve reports (spec §2.4). World-frame quantities unless the name says otherwise; the
 // whisker-centred frame B is the rest frame of spec §2.1 at the whisker's current pose.
-#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -13,18 +12,6 @@
 
 namespace vibrissa {
 
-/// What a contact solve learned about the chain at its solution, kept with its LoadState for the next frame:
-/// the contact kinematics there and a secant (Broyden) estimate of their derivatives with respect to the
-/// solve's unknowns, so that a warm start from the state begins with a Jacobian instead of computing one
-/// (quasi-Newton across frames; the kinematics are in the whisker frame, so they hold whatever the pose).
-/// Internal to the solvers: used only on a whisker with the same mechanics_fingerprint() and only while the
-/// state's load is exactly the one it was made at; never written to files (a state read back starts without it).
-struct LoadSensitivity {
-  std::uint64_t whisker = 0;           ///< Whisker::mechanics_fingerprint() it was made on (0: none)
-  std::array<double, 3> unknowns{};    ///< the solve's scaled unknowns (F_y, F_z, s) it holds at (internal)
-  std::array<double, 36> kinematics{};  ///< p_contact_B, force_B, couple_B: each value, then 3 derivatives (internal)
-};
-
 /// Unknowns of a contact solve: force components in the frame of the loaded link (x along the link) and
 /// the arc length of contact. Pass a previous solution's state to warm-start the next frame.
 struct LoadState {
@@ -32,7 +19,6 @@ struct LoadState {
   double force_y = 0.0;  ///< [N]
   double force_z = 0.0;  ///< [N]
   double arc_length = 0.0;  ///< [m]
-  LoadSensitivity sensitivity;  ///< set by the solve that produced this state (speeds up the next warm start)
 };
 
 /// Base signals in the whisker-centred frame (spec §2.4, Fig. 3b).
