@@ -122,11 +122,30 @@ def test_single_solve_releases_the_gil():
     assert inside >= 10, (seconds, inside)
 
 
+def long_trial_duration(call, duration=2.0):
+    """A trial duration [s], doubled from `duration` until `call(duration)` lasts at least twice
+    MIN_CALL_SECONDS here: calibrated, so the tests hold at any engine speed."""
+    while True:
+        start = time.perf_counter()
+        call(duration)
+        if time.perf_counter() - start >= 2 * MIN_CALL_SECONDS:
+            return duration
+        duration *= 2
+
+
 def test_pipeline_calls_release_the_gil():
     """synthesize_trial / analyze_trial / simulate_array run on a worker thread; the caller waits with the GIL
     released (python/src/interruptible.hpp)."""
-    seconds, inside = repetitions_inside(lambda: vibrissa.synthesize_trial(duration=8.0), pure_python)
+    synthesis = long_trial_duration(lambda d: vibrissa.synthesize_trial(duration=d))
+    seconds, inside = repetitions_inside(lambda: vibrissa.synthesize_trial(duration=synthesis), pure_python)
     assert seconds >= MIN_CALL_SECONDS and inside >= 10, (seconds, inside)
-    trial = vibrissa.synthesize_trial(duration=5.0)
+    duration = 2.0
+    while True:  # calibrated as long_trial_duration, timing the analysis alone
+        trial = vibrissa.synthesize_trial(duration=duration)
+        start = time.perf_counter()
+        vibrissa.analyze_trial(trial, mu=0.48)
+        if time.perf_counter() - start >= 2 * MIN_CALL_SECONDS:
+            break
+        duration *= 2
     seconds, inside = repetitions_inside(lambda: vibrissa.analyze_trial(trial, mu=0.48), pure_python)
     assert seconds >= MIN_CALL_SECONDS and inside >= 10, (seconds, inside)

@@ -7,6 +7,8 @@
 // convergence near the root); damping grows only when a step fails to reduce the residual, which globalises
 // the method for thin, compliant tips. When M != 3 a fit also converges at a stationary point of the squares
 // (|J^T r| <= tolerance * max|J|), since an over-determined fit need not reach zero residual.
+// A trial point is evaluated with its Jacobian when the step is likely to be accepted short of the tolerance
+// (speculation_margin), so an accepted step costs one walk; the results do not depend on it.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -33,6 +35,14 @@ struct LMBounds {
   Eigen::Vector3d lower = Eigen::Vector3d::Constant(-1e300);
   Eigen::Vector3d upper = Eigen::Vector3d::Constant(1e300);
 };
+
+/// Speculative Jacobians: a pure Newton trial point of a square system is evaluated with its Jacobian (instead
+/// of its value alone, then the Jacobian if accepted) when the residual there is predicted to stay above this
+/// many tolerances, so that an accepted step needs no second walk. The prediction is Newton's quadratic model,
+/// r_next = r^3 / r_previous^2 (r^2 for the first step), in the max-norm of the scaled residual. A Jacobian
+/// evaluation's values are the forward evaluation's (core/chain_jacobian.hpp), so what is speculated changes the
+/// cost only, never a result: a wrong guess costs the Jacobian's extra work (a rejected or converged trial).
+inline constexpr double speculation_margin = 1e3;
 
 /// Number of residuals of a functor (the size of the array it returns).
 template <class Residual>
@@ -88,6 +98,7 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
   if (!r.allFinite()) return out;
   double cost = r.squaredNorm();
   double lambda = 0.0;
+  double previous_r_max = 0.0;  // max-norm of the residual at the last accepted point (0: none yet)
   int it = 0;
   for (; it < max_iterations; ++it) {
     if (done(u, r, J)) {
@@ -114,14 +125,23 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
       }
       const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
       // Trial points cost one forward evaluation; the Jacobian is formed only where a step is accepted and
-      // the residual is not yet within tolerance (a square system's converged point needs none).
+      // the residual is not yet within tolerance (a square system's converged point needs none), at once with
+      // the value where that is predicted (speculation_margin).
       Vec r_new;
-      evaluate(f, u_new, r_new);
+      Jac J_new;
+      const double r_now = r.cwiseAbs().maxCoeff();
+      const double predicted = previous_r_max > 0.0 ? r_now * (r_now / previous_r_max) * (r_now / previous_r_max)
+                                                    : r_now * r_now;
+      const bool speculate = M == 3 && lambda == 0.0 && predicted > speculation_margin * tolerance;
+      if (speculate) evaluate_with_jacobian(f, u_new, r_new, J_new);
+      else evaluate(f, u_new, r_new);
       const double cost_new = r_new.squaredNorm();
       if (r_new.allFinite() && cost_new < cost) {
         const bool tiny = (u_new - u).cwiseAbs().maxCoeff() <= 1e-16 * std::max(1.0, u.cwiseAbs().maxCoeff());
         u = u_new;
-        if (M != 3 || r_new.cwiseAbs().maxCoeff() > tolerance) evaluate_with_jacobian(f, u, r_new, J);
+        if (speculate) J = J_new;
+        else if (M != 3 || r_new.cwiseAbs().maxCoeff() > tolerance) evaluate_with_jacobian(f, u, r_new, J);
+        previous_r_max = r_now;
         r = r_new;
         cost = r.squaredNorm();
         accepted = true;
