@@ -11,7 +11,9 @@ namespace vibrissa {
 // with the same operations in the same order, without fused multiply-adds: the results are identical.
 // The helpers have internal linkage and are inlined into each build, so the ABI of passing AVX-sized vectors
 // (GCC's -Wpsabi note) never applies.
-#if defined(__GNUC__) && !defined(__clang__)
+#if defined(__clang__)
+#pragma clang diagnostic ignored "-Wpsabi"
+#elif defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 #define VIBRISSA_LANE_INLINE [[gnu::always_inline]] inline
