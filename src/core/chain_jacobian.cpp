@@ -10,7 +10,7 @@ namespace vibrissa {
 // CPU has AVX2 the Lanes build runs (one instruction per operation); elsewhere Each. Both form every number
 // with the same operations in the same order, without fused multiply-adds: the results are identical.
 // The helpers have internal linkage and are inlined into each build, so the ABI of passing AVX-sized vectors
-// (GCC's -Wpsabi note) never applies.
+// (the -Wpsabi note of GCC and Clang) never applies.
 #if defined(__clang__)
 #pragma clang diagnostic ignored "-Wpsabi"
 #elif defined(__GNUC__)
