@@ -16,6 +16,7 @@ import time
 import numpy as np
 
 import vibrissa
+from calibrated import lasting
 from vibrissa import WhiskerProperties
 
 MIN_CALL_SECONDS = 0.1  # long calls must last this long for the middle half to dwarf the switch interval
@@ -59,16 +60,10 @@ def batch_args(links=200):
 
 
 def long_batch(w, points):
-    """The points tiled until one batch solve of them (threads=1, cold) lasts at least twice MIN_CALL_SECONDS
-    here: calibrated, so the tests hold at any engine speed."""
-    tiles = 1
-    while True:
-        batch = np.tile(points, (tiles, 1))
-        start = time.perf_counter()
-        vibrissa.solve_point_batch(w, batch, warm_start=False, threads=1)
-        if time.perf_counter() - start >= 2 * MIN_CALL_SECONDS:
-            return batch
-        tiles *= 2
+    """The points tiled until one batch solve of them (threads=1, cold) lasts at least twice MIN_CALL_SECONDS."""
+    return lasting(lambda tiles: np.tile(points, (tiles, 1)),
+                   lambda batch: vibrissa.solve_point_batch(w, batch, warm_start=False, threads=1),
+                   1, 2 * MIN_CALL_SECONDS)
 
 
 def undisturbed(measure, nominal_seconds, attempts=10):
@@ -122,30 +117,13 @@ def test_single_solve_releases_the_gil():
     assert inside >= 10, (seconds, inside)
 
 
-def long_trial_duration(call, duration=2.0):
-    """A trial duration [s], doubled from `duration` until `call(duration)` lasts at least twice
-    MIN_CALL_SECONDS here: calibrated, so the tests hold at any engine speed."""
-    while True:
-        start = time.perf_counter()
-        call(duration)
-        if time.perf_counter() - start >= 2 * MIN_CALL_SECONDS:
-            return duration
-        duration *= 2
-
-
 def test_pipeline_calls_release_the_gil():
     """synthesize_trial / analyze_trial / simulate_array run on a worker thread; the caller waits with the GIL
     released (python/src/interruptible.hpp)."""
-    synthesis = long_trial_duration(lambda d: vibrissa.synthesize_trial(duration=d))
+    synthesis = lasting(lambda d: d, lambda d: vibrissa.synthesize_trial(duration=d), 2.0, 2 * MIN_CALL_SECONDS)
     seconds, inside = repetitions_inside(lambda: vibrissa.synthesize_trial(duration=synthesis), pure_python)
     assert seconds >= MIN_CALL_SECONDS and inside >= 10, (seconds, inside)
-    duration = 2.0
-    while True:  # calibrated as long_trial_duration, timing the analysis alone
-        trial = vibrissa.synthesize_trial(duration=duration)
-        start = time.perf_counter()
-        vibrissa.analyze_trial(trial, mu=0.48)
-        if time.perf_counter() - start >= 2 * MIN_CALL_SECONDS:
-            break
-        duration *= 2
+    trial = lasting(lambda d: vibrissa.synthesize_trial(duration=d), lambda t: vibrissa.analyze_trial(t, mu=0.48),
+                    2.0, 2 * MIN_CALL_SECONDS)
     seconds, inside = repetitions_inside(lambda: vibrissa.analyze_trial(trial, mu=0.48), pure_python)
     assert seconds >= MIN_CALL_SECONDS and inside >= 10, (seconds, inside)

@@ -3,12 +3,12 @@ Same inputs as the CLI give bit-identical numbers; progress; Ctrl-C; errors name
 
 import json
 import subprocess
-import time
 
 import numpy as np
 import pytest
 
 import vibrissa
+from calibrated import lasting
 from interrupting import interrupt
 
 h5py = pytest.importorskip("h5py")
@@ -243,15 +243,8 @@ def test_ctrl_c_stops_simulate_array_within_half_a_second(with_progress):
 @pytest.mark.parametrize("with_progress", [False, True])
 def test_ctrl_c_stops_synthesis_and_analysis_within_half_a_second(with_progress):
     assert interrupt(lambda p: vibrissa.synthesize_trial(duration=60.0, progress=p), 0.3, with_progress) < 0.5
-    # A trial whose analysis lasts at least 0.5 s here (doubled until it does: the engine's speed varies).
-    duration = 5.0
-    while True:
-        long_trial = vibrissa.synthesize_trial(duration=duration)
-        start = time.perf_counter()
-        vibrissa.analyze_trial(long_trial, mu=0.48)
-        if time.perf_counter() - start >= 0.5:
-            break
-        duration *= 2
+    long_trial = lasting(lambda d: vibrissa.synthesize_trial(duration=d), lambda t: vibrissa.analyze_trial(t, mu=0.48),
+                         5.0, 0.5)
     assert interrupt(lambda p: vibrissa.analyze_trial(long_trial, mu=0.48, progress=p), 0.05, with_progress) < 0.5
 
 

@@ -189,7 +189,7 @@ VIBRISSA_LANE_INLINE ContactKinematics<D> walk(const Whisker& w, const V3<D>& fo
       const V P = mul(Kc, M);
       omega = P + mul(Kc, cross(P, scaled(0.5, M)));
       const T dM = T::outer(T::scaled_coefficients(slope, dh), rxF) + scaled(wf, drxF) +
-                   T::outer(T::scaled_coefficients(slope > 0.0 ? 1.0 : 0.0, dh), C.x) + scaled(wc, C.dx);
+                   T::outer(slope > 0.0 ? dh : Coefficients{}, C.x) + scaled(wc, C.dx);
       const T dP = mul(Kc, dM);
       domega = dP + mul(Kc, scaled(0.5, cross(dP, M) + cross(P, dM)));
     } else {  // omega = P + Kw (P x (m / 2)), P = Kw m (chain.hpp)
