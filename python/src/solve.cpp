@@ -115,8 +115,18 @@ void bind_solve(py::module_& m) {
 
   py::class_<LoadState>(m, "LoadState",
                         "Unknowns of a contact solve (force in the loaded link's frame [N], contact arc length [m]); "
-                        "pass a previous solution's state (or the solution itself) as `warm` to warm-start.")
-      .def(py::init([](double fx, double fy, double fz, double s) { return LoadState{fx, fy, fz, s}; }),
+                        "pass a previous solution's state (or the solution itself) as `warm` to warm-start. A "
+                        "solution's state also carries what its solve learned (the next warm start's first step "
+                        "then needs no Jacobian); a LoadState built from numbers does not: the same root, to within "
+                        "the tolerance.")
+      .def(py::init([](double fx, double fy, double fz, double s) {
+             LoadState state;
+             state.force_x = fx;
+             state.force_y = fy;
+             state.force_z = fz;
+             state.arc_length = s;
+             return state;
+           }),
            py::kw_only(), py::arg("force_x") = 0.0, py::arg("force_y") = 0.0, py::arg("force_z") = 0.0,
            py::arg("arc_length") = 0.0)
       .def_readwrite("force_x", &LoadState::force_x, "Axial component [N].")

@@ -138,8 +138,12 @@ def test_warm_start_accepts_state_or_solution(whisker):
     c = vibrissa.solve_point(whisker, [0.02, 0.0042, 0.0],
                              warm=LoadState(force_x=st.force_x, force_y=st.force_y, force_z=st.force_z,
                                             arc_length=st.arc_length))
-    assert a.force_magnitude == b.force_magnitude == c.force_magnitude
-    assert a.iterations <= 6
+    # A solution and its state carry the record of the solve (its first step costs no walk); four numbers
+    # typed in do not: the same root to within the tolerance.
+    assert a.force_magnitude == b.force_magnitude
+    assert c.force_magnitude == pytest.approx(a.force_magnitude, rel=1e-12)
+    assert np.linalg.norm(np.subtract(a.contact_point_W, c.contact_point_W)) <= 1e-12
+    assert a.iterations == c.iterations <= 6
 
 
 def test_status_enum():

@@ -217,6 +217,21 @@ void Whisker::build(std::vector<Eigen::Vector3d> nodes_B, const WhiskerPropertie
     remesh_.inertia = CubicSpline::not_a_knot(s_tail, I);
   }
   base_extra_compliance_ = props.base_stiffness ? 1.0 / *props.base_stiffness : 0.0;
+  // FNV-1a over the bytes of every array the walk and the paper scheme's re-mesh are built from.
+  std::uint64_t h = 14695981039346656037ull;
+  auto bytes = [&h](const void* data, std::size_t size) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  auto all = [&bytes](const auto& v) { bytes(v.data(), v.size() * sizeof(v[0])); };
+  all(nodes_B_), all(radius_), all(youngs_), all(cb_), all(ct_), all(weight_), all(weight_load_base_);
+  all(compliance_link_), all(compliance_B_), all(weighted_compliance_B_), all(link_vector_B_), all(load_curvature_);
+  bytes(&weight_load_slope_, sizeof weight_load_slope_);
+  bytes(&base_extra_compliance_, sizeof base_extra_compliance_);
+  const auto scheme = static_cast<int>(props.scheme), base = static_cast<int>(props.base);
+  bytes(&scheme, sizeof scheme);
+  bytes(&base, sizeof base);
+  fingerprint_ = h;
 }
 
 void Whisker::locate(double s, int& link, double& h) const {

@@ -74,20 +74,6 @@ void set_force_angle(const Whisker& w, const Placement& X, double force, double 
   state.force_z = -force * std::sin(a);
 }
 
-std::optional<ContactKinematics<double>> ContactEvaluations::at(const LoadState& state) const {
-  if (state.force_x != 0.0) return std::nullopt;
-  return at_load(Eigen::Vector3d(state.force_y, state.force_z, state.arc_length));
-}
-
-std::optional<ContactKinematics<double>> ContactEvaluations::at_load(const Eigen::Vector3d& load) const {
-  if (load == value_load_) return value_;
-  if (load == jacobian_load_) {
-    auto v = [](const V3<Dual<3>>& x) { return V3<double>(x.x.v, x.y.v, x.z.v); };
-    return ContactKinematics<double>{v(jacobian_.p_contact_B), v(jacobian_.force_B), v(jacobian_.couple_B)};
-  }
-  return std::nullopt;
-}
-
 void fill_solution(const Whisker& w, const Placement& X, const LoadState& state, const SolveOptions& options,
                    const std::optional<Eigen::Vector3d>& edge_direction_W, Solution& out,
                    const ContactEvaluations* evaluated) {
@@ -105,6 +91,8 @@ void fill_solution(const Whisker& w, const Placement& X, const LoadState& state,
   const Eigen::Vector3d p_B = to_eigen(c.p_contact_B), F_B = to_eigen(c.force_B);
   const Eigen::Vector3d M_B = p_B.cross(F_B);
   out.state = state;
+  if (evaluated && state.sensitivity.whisker == 0)
+    out.state.sensitivity = evaluated->sensitivity_at(w, state);
   out.arc_length = state.arc_length;
   out.force_magnitude = F_B.norm();
   out.angle = force_angle(w, X, state);

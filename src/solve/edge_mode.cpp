@@ -3,6 +3,7 @@
 // construction). The whisker is pushed, never pulled (docs/conventions.md, "Contact side").
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "edge_problem.hpp"
 #include "solution_check.hpp"
@@ -50,26 +51,35 @@ Solution solve_edge_from(const Whisker& w, const Placement& X, const Edge& edge,
   if (approach_W) require_finite(*approach_W, "load.approach");
   const detail::Scales sc(w);
   const detail::EdgeGeometryB g = detail::edge_in_body(X, edge);
-  bool within_reach = false;
-  const double s_near = detail::nearest_rest_arc_length(w, g, within_reach);
-  if (!within_reach)
+  if (!detail::within_reach(w, g))
     return detail::unloaded_solution(w, X, Status::no_contact, "the edge is out of the whisker's reach", options);
 
+  // The rest point nearest the line: needed only where a solve starts from it (not on warm frames).
+  std::optional<double> nearest;
+  auto s_near = [&] {
+    if (!nearest) nearest = detail::nearest_rest_arc_length(w, g);
+    return *nearest;
+  };
   Eigen::Vector3d u0;
-  if (warm)
-    u0 = detail::unknowns_from_state(*warm, sc);
-  else if (hint)
+  detail::ContactEvaluations carried;  // what the solve that produced `warm` left with it
+  if (warm) {
+    u0 = carried.start_at(w, sc, *warm);
+    if (!known) known = &carried;
+  } else if (hint) {
     u0 = Eigen::Vector3d(0.0, 0.0, std::clamp(*hint, 1e-6 * sc.length, w.length()) / sc.length);
-  else
-    u0 = detail::cold_edge_start(w, sc, g, s_near);
+  } else if (const auto guess = detail::cantilever_start(w, sc, g.point, g.direction)) {
+    u0 = *guess;  // beam theory, as Elastica3D starts
+  } else {
+    u0 = Eigen::Vector3d(0.0, 0.0, s_near() / sc.length);  // zero force at the rest point nearest the line
+  }
   detail::EdgeAttempt a = detail::attempt_edge(w, sc, g, 0.0, u0, options, known);
   if (a.status == Status::not_converged && (warm || hint)) {
     detail::EdgeAttempt cold =
-        detail::attempt_edge(w, sc, g, 0.0, Eigen::Vector3d(0.0, 0.0, s_near / sc.length), options);
+        detail::attempt_edge(w, sc, g, 0.0, Eigen::Vector3d(0.0, 0.0, s_near() / sc.length), options);
     cold.lm.iterations += a.lm.iterations;
     a = cold;
   }
-  if (a.status == Status::not_converged) a = detail::continue_from_touch(w, sc, g, s_near, options, a);
+  if (a.status == Status::not_converged) a = detail::continue_from_touch(w, sc, g, s_near(), options, a);
   if (a.status == Status::slipped_off) {  // released: the whisker is free again (rest shape, no force)
     Solution off = detail::unloaded_solution(
         w, X, Status::slipped_off,

@@ -33,7 +33,8 @@ EdgeAttempt attempt_edge(const Whisker& w, const Scales& sc, const EdgeGeometryB
     }
     return std::array<S, 3>{dot(rel, e1), dot(rel, e2), along};
   };
-  a.lm = levenberg_marquardt(residual, u0, contact_bounds(), options.tolerance / sc.length, options.max_iterations);
+  a.lm = levenberg_marquardt(residual, u0, contact_bounds(), options.tolerance / sc.length, options.max_iterations,
+                             &a.evaluations);
   if (a.lm.converged)
     a.status = a.lm.u[2] > 1.0 + 1e-12 ? Status::slipped_off : Status::converged;
   else
@@ -75,22 +76,34 @@ EdgeAttempt continue_from_touch(const Whisker& w, const Scales& sc, const EdgeGe
   return last;
 }
 
-double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g, bool& within_reach) {
+namespace {
+
+/// Where `p` is seen along the line: its offset from the line in the plane normal to it.
+Eigen::Vector2d seen_along(const EdgeGeometryB& g, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d r = p - g.point;
+  return {r.dot(g.e1), r.dot(g.e2)};
+}
+
+}  // namespace
+
+bool within_reach(const Whisker& w, const EdgeGeometryB& g) {
+  // In the projection along the line, the line is a point: it is reachable if the projected rest whisker
+  // gets at least as far from the projected base as that point is. Any node that does decides (from the
+  // tip, which usually does): the same answer as comparing with the farthest node.
+  const Eigen::Vector2d base = seen_along(g, Eigen::Vector3d::Zero());
+  const double distance = base.norm();
+  const auto& nodes = w.rest_nodes_B();
+  return std::any_of(nodes.rbegin(), nodes.rend(), [&](const Eigen::Vector3d& p) {
+    return distance <= (seen_along(g, p) - base).norm() * (1.0 + 1e-12);
+  });
+}
+
+double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g) {
   const auto& nodes = w.rest_nodes_B();
   const auto& arc = w.node_arc_lengths();
-  auto perp = [&](const Eigen::Vector3d& p) {
-    const Eigen::Vector3d r = p - g.point;
-    return Eigen::Vector2d(r.dot(g.e1), r.dot(g.e2));
-  };
-  // In the projection along the line, the line is a point: it is reachable if the projected rest whisker
-  // gets at least as far from the projected base as that point is.
-  const Eigen::Vector2d base = perp(Eigen::Vector3d::Zero());
-  double reach = 0.0;
-  for (const auto& p : nodes) reach = std::max(reach, (perp(p) - base).norm());
-  within_reach = base.norm() <= reach * (1.0 + 1e-12);
   double best = 1e300, best_s = w.length();
   for (std::size_t i = 0; i + 1 < nodes.size(); ++i) {
-    const Eigen::Vector2d a = perp(nodes[i]), b = perp(nodes[i + 1]);
+    const Eigen::Vector2d a = seen_along(g, nodes[i]), b = seen_along(g, nodes[i + 1]);
     const Eigen::Vector2d ab = b - a;
     const double f = std::clamp(-a.dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
     const double dist = (a + f * ab).norm();
@@ -100,10 +113,6 @@ double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g, bool& w
     }
   }
   return best_s;
-}
-
-Eigen::Vector3d cold_edge_start(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double s_near) {
-  return cantilever_start(w, sc, g.point, g.direction).value_or(Eigen::Vector3d(0.0, 0.0, s_near / sc.length));
 }
 
 }  // namespace vibrissa::detail

@@ -47,14 +47,12 @@ EdgeAttempt continue_from_touch(const Whisker& w, const Scales& sc, const EdgeGe
 void check_contact_side(const Whisker& w, const Placement& X_WB, const std::optional<Eigen::Vector3d>& approach_W,
                         Solution& out);
 
-/// Scaled unknowns from which a cold edge solve starts: the arc length at which the rest whisker, seen
-/// along the line, is as far from the base as the line (a rotation about the base along the line keeps these
-/// distances), with the cantilever force that moves that point onto the line (beam theory, as Elastica3D
-/// starts). If that point must turn by more than max_cantilever_turn, zero force at s_near (the rest point
-/// nearest the line).
-Eigen::Vector3d cold_edge_start(const Whisker& w, const Scales& sc, const EdgeGeometryB& g, double s_near);
+/// Whether the line is within the whisker's reach: seen along the line, the rest whisker gets at least as far
+/// from the base as the line is (a rotation about the base could bring them together).
+bool within_reach(const Whisker& w, const EdgeGeometryB& g);
 
-/// Arc length of the rest whisker's point nearest the line, and whether the line is within reach.
-double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g, bool& within_reach);
+/// Arc length of the rest whisker's point nearest the line, seen along it: where continuation from first touch
+/// starts, and a cold solve when the cantilever guess does not apply (edge_mode.cpp).
+double nearest_rest_arc_length(const Whisker& w, const EdgeGeometryB& g);
 
 }  // namespace vibrissa::detail

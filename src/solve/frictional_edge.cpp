@@ -28,10 +28,13 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
   inner.compute_shape = false;
   inner.find_other_roots = false;
   // Both the frictionless and the stick solve start at the previous frame's state: one Jacobian there serves
-  // both (their first evaluation).
+  // both (their first evaluation): the estimate the previous solve left with its state, or one evaluated here.
   const detail::Scales sc(w);
   detail::ContactEvaluations at_warm;
-  if (warm) at_warm.evaluate_jacobian_at(w, sc, detail::unknowns_from_state(*warm, sc));
+  if (warm) {
+    const Eigen::Vector3d u0 = at_warm.start_at(w, sc, *warm);
+    if (!at_warm.at(*warm)) at_warm.evaluate_jacobian_at(w, sc, u0);
+  }
   const detail::ContactEvaluations* known = warm ? &at_warm : nullptr;
   const Solution free = detail::solve_edge_from(w, X, edge, std::nullopt, inner, warm, approach_W, known);
   // The reported Solution: outputs from the final state (with the caller's options), typed outcome. A
@@ -73,7 +76,9 @@ Solution solve_frictional_edge(const Whisker& w, const Placement& X, const Edge&
   const detail::EdgeGeometryB g = detail::edge_in_body(X, edge);
   detail::EdgeAttempt best;
   for (const LoadState* start : {stick.status == Status::converged ? &stick.state : &free.state, &free.state}) {
-    best = detail::attempt_edge(w, sc, g, sigma * mu, detail::unknowns_from_state(*start, sc), inner);
+    detail::ContactEvaluations carried;  // what the stick or frictionless solve left with its state
+    const Eigen::Vector3d u0 = carried.start_at(w, sc, *start);
+    best = detail::attempt_edge(w, sc, g, sigma * mu, u0, inner, &carried);
     if (best.status == Status::converged) break;
   }
   Solution slip;

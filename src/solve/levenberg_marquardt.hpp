@@ -9,6 +9,11 @@
 // (|J^T r| <= tolerance * max|J|), since an over-determined fit need not reach zero residual.
 // A trial point is evaluated with its Jacobian when the step is likely to be accepted short of the tolerance
 // (speculation_margin), so an accepted step costs one walk; the results do not depend on it.
+// A warm start may begin from an estimated Jacobian (JacobianEstimates: the one the previous frame's solve left
+// with its state): its first step is then a chord step that costs no walk. It is kept only if it shrinks the
+// residual as a Newton step near the root does (estimate_contraction); otherwise it is taken again from the
+// exact Jacobian, so a wrong estimate costs one walk, damping grows only on exact Jacobians, and every later
+// Jacobian is evaluated.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -44,6 +49,25 @@ struct LMBounds {
 /// cost only, never a result: a wrong guess costs the Jacobian's extra work (a rejected or converged trial).
 inline constexpr double speculation_margin = 1e3;
 
+/// Whether the Jacobian a residual's evaluations served last is an estimate, and how to drop it
+/// (ContactEvaluations: the Jacobian a warm start's state carries).
+class JacobianEstimates {
+ public:
+  [[nodiscard]] virtual bool estimated() const = 0;
+  /// Drops an estimate: the next Jacobian evaluation is exact.
+  virtual void forget_estimate() = 0;
+
+ protected:
+  JacobianEstimates() = default;
+  JacobianEstimates(const JacobianEstimates&) = default;
+  JacobianEstimates& operator=(const JacobianEstimates&) = default;
+  ~JacobianEstimates() = default;
+};
+
+/// A step from an estimated Jacobian is kept only if it shrinks the max-norm of the residual at least this many
+/// times (Newton's steps from the previous frame's solution shrink it 50 times and more on the benchmark cases).
+inline constexpr double estimate_contraction = 0.1;
+
 /// Number of residuals of a functor (the size of the array it returns).
 template <class Residual>
 inline constexpr int residual_count =
@@ -70,7 +94,7 @@ void evaluate(Residual& f, const Eigen::Vector3d& u, Eigen::Matrix<double, M, 1>
 
 template <class Residual>
 LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bounds, double tolerance,
-                             int max_iterations) {
+                             int max_iterations, JacobianEstimates* estimates = nullptr) {
   constexpr int M = residual_count<std::remove_reference_t<Residual>>;
   using Vec = Eigen::Matrix<double, M, 1>;
   using Jac = Eigen::Matrix<double, M, 3>;
@@ -95,6 +119,7 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
   Vec r;
   Jac J;
   evaluate_with_jacobian(f, u, r, J);
+  bool J_estimated = estimates && estimates->estimated();
   if (!r.allFinite()) return out;
   double cost = r.squaredNorm();
   double lambda = 0.0;
@@ -105,9 +130,20 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
       out.converged = true;
       break;
     }
-    const Eigen::Matrix3d A = J.transpose() * J;
-    const Eigen::Vector3d g = J.transpose() * r;
-    const double scale = std::max(A.diagonal().maxCoeff(), 1e-300);
+    Eigen::Matrix3d A = J.transpose() * J;
+    Eigen::Vector3d g = J.transpose() * r;
+    double scale = std::max(A.diagonal().maxCoeff(), 1e-300);
+    // A failed step from an estimated Jacobian: the exact one at u instead (true), or damping as usual.
+    auto exact_instead = [&] {
+      if (!J_estimated) return false;
+      estimates->forget_estimate();
+      evaluate_with_jacobian(f, u, r, J);
+      J_estimated = false;
+      A = J.transpose() * J;
+      g = J.transpose() * r;
+      scale = std::max(A.diagonal().maxCoeff(), 1e-300);
+      return true;
+    };
     bool accepted = false;
     for (int attempt = 0; attempt < 30 && !accepted; ++attempt) {
       Eigen::Vector3d step;
@@ -120,7 +156,8 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
         step = -A_damped.ldlt().solve(g);
       }
       if (!step.allFinite()) {
-        lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
+        if (exact_instead()) --attempt;
+        else lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
         continue;
       }
       const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
@@ -136,17 +173,22 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
       if (speculate) evaluate_with_jacobian(f, u_new, r_new, J_new);
       else evaluate(f, u_new, r_new);
       const double cost_new = r_new.squaredNorm();
-      if (r_new.allFinite() && cost_new < cost) {
+      const double r_new_max = r_new.cwiseAbs().maxCoeff();
+      const bool keep = !J_estimated || r_new_max <= estimate_contraction * r_now || r_new_max <= tolerance;
+      if (r_new.allFinite() && cost_new < cost && keep) {
         const bool tiny = (u_new - u).cwiseAbs().maxCoeff() <= 1e-16 * std::max(1.0, u.cwiseAbs().maxCoeff());
         u = u_new;
         if (speculate) J = J_new;
-        else if (M != 3 || r_new.cwiseAbs().maxCoeff() > tolerance) evaluate_with_jacobian(f, u, r_new, J);
+        else if (M != 3 || r_new_max > tolerance) evaluate_with_jacobian(f, u, r_new, J);
+        J_estimated = false;
         previous_r_max = r_now;
         r = r_new;
         cost = r.squaredNorm();
         accepted = true;
         lambda = lambda < 1e-9 * scale ? 0.0 : lambda / 10.0;
         if (tiny) break;
+      } else if (exact_instead()) {
+        --attempt;  // the same step, from the exact Jacobian (same damping)
       } else {
         lambda = lambda == 0.0 ? 1e-6 * scale : lambda * 10.0;
       }

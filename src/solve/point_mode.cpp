@@ -37,7 +37,7 @@ PointAttempt attempt_point(const Whisker& w, const detail::Scales& sc, const Eig
                             c.p_contact_B.z / sc.length - t.z()};
   };
   a.lm = detail::levenberg_marquardt(residual, u0, detail::contact_bounds(), options.tolerance / sc.length,
-                                     options.max_iterations);
+                                     options.max_iterations, &a.evaluations);
   if (a.lm.converged)
     a.status = a.lm.u[2] > 1.0 + 1e-12 ? Status::slipped_off : Status::converged;
   else
@@ -146,8 +146,10 @@ Solution detail::solve_point_from(const Whisker& w, const Placement& X, const Ei
                                      "the target point lies beyond the whisker's length from the base", options);
 
   Eigen::Vector3d u0;
+  ContactEvaluations carried;  // what the solve that produced `warm` left with it
   if (warm) {
-    u0 = detail::unknowns_from_state(*warm, sc);
+    u0 = carried.start_at(w, sc, *warm);
+    if (!known) known = &carried;
   } else if (hint) {
     u0 = Eigen::Vector3d(0.0, 0.0, std::clamp(*hint, 1e-6 * sc.length, w.length()) / sc.length);
   } else {

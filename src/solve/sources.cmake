@@ -1,5 +1,6 @@
 target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/status.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/contact_evaluations.cpp
   ${CMAKE_CURRENT_LIST_DIR}/contact_problem.cpp
   ${CMAKE_CURRENT_LIST_DIR}/solution_check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/edge_problem.cpp

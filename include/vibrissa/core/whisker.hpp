@@ -5,6 +5,7 @@
 // (R_WB, p_W_base) — is a small value given to each solve; the forward model (chain.hpp) works in B and
 // writes only into caller-owned storage.
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -111,6 +112,11 @@ class Whisker {
   [[nodiscard]] double base_extra_compliance() const { return base_extra_compliance_; }
   /// Bending stiffness at the base E I_0 [N·m^2] (scales every solve).
   [[nodiscard]] double base_bending_stiffness() const { return 1.0 / cb_.front(); }
+  /// A 64-bit hash (FNV-1a) of every number the chain's mechanics are built from (rest nodes, radii, moduli,
+  /// compliances, weights, scheme): whiskers that deflect alike share it, a different whisker almost surely
+  /// has another. The placement is not part of it. A solve's warm-start record is used only on a whisker with
+  /// the fingerprint it was made on (solution.hpp, LoadSensitivity).
+  [[nodiscard]] std::uint64_t mechanics_fingerprint() const { return fingerprint_; }
 
   /// Paper scheme: MATLAB splines (cubic_spline.hpp) against node arc length through the rest nodes in B,
   /// and through E and I = pi r^4 / 4 at nodes 1..N, with which Elastica3D re-meshes the chain for each load.
@@ -146,6 +152,7 @@ class Whisker {
   std::vector<double> cb_, ct_, weight_, weight_load_base_;
   double weight_load_slope_ = 0.0;
   double base_extra_compliance_ = 0.0;
+  std::uint64_t fingerprint_ = 0;
   PublishedRemesh remesh_;
   Placement placement_;
 };

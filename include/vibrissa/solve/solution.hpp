@@ -1,6 +1,7 @@
 #pragma once
 // Everything a solve reports (spec §2.4). World-frame quantities unless the name says otherwise; the
 // whisker-centred frame B is the rest frame of spec §2.1 at the whisker's current pose.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -12,6 +13,23 @@
 
 namespace vibrissa {
 
+/// What a contact solve learned about the chain at its solution, kept with its LoadState for the next frame:
+/// the contact kinematics there and their derivatives with respect to the solve's unknowns (its last Jacobian,
+/// moved to the solution by one secant update). The kinematics are in the whisker frame, so they hold whatever
+/// the pose: a warm start from the state has its starting residual without walking the chain and takes its
+/// first Newton step from these derivatives; every later Jacobian is evaluated, and a first step that does not
+/// shrink the residual tenfold is taken again from an evaluated one. It changes what a warm solve costs (one
+/// forward evaluation and one Jacobian instead of two Jacobians on a 1 kHz frame), not its root: results agree
+/// with a warm start from the same four numbers typed in to within the tolerance (5e-13 relative on a tracked
+/// whisk, tests/solve/test_warm_start_record.cpp).
+/// Internal to the solvers: used only on a whisker with the same mechanics_fingerprint() and only while the
+/// state's load is exactly the one it was made at; never written to files (a state read back starts without it).
+struct LoadSensitivity {
+  std::uint64_t whisker = 0;           ///< Whisker::mechanics_fingerprint() it was made on (0: none)
+  std::array<double, 3> unknowns{};    ///< the solve's scaled unknowns (F_y, F_z, s) it holds at (internal)
+  std::array<double, 36> kinematics{};  ///< p_contact_B, force_B, couple_B: each value, then 3 derivatives (internal)
+};
+
 /// Unknowns of a contact solve: force components in the frame of the loaded link (x along the link) and
 /// the arc length of contact. Pass a previous solution's state to warm-start the next frame.
 struct LoadState {
@@ -19,6 +37,7 @@ struct LoadState {
   double force_y = 0.0;  ///< [N]
   double force_z = 0.0;  ///< [N]
   double arc_length = 0.0;  ///< [m]
+  LoadSensitivity sensitivity;  ///< set by the solve that produced this state (speeds up the next warm start)
 };
 
 /// Base signals in the whisker-centred frame (spec §2.4, Fig. 3b).
