@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "vibrissa/core/whisker.hpp"
+#include "vibrissa/solve/options.hpp"
 
 namespace vibrissa::test {
 
@@ -38,5 +39,22 @@ inline std::string invalid_message(F&& f) {
 }
 
 inline double deg(double d) { return d * std::numbers::pi / 180.0; }
+
+/// A vertical peg (an edge along world z) through (x, y, 0).
+inline Edge vertical_peg(double x, double y) {
+  Edge e;
+  e.point = {x, y, 0.0};
+  e.direction = {0.0, 0.0, 1.0};
+  return e;
+}
+
+/// The 3D pose of the solve tests and benchmarks: theta = phi = 10 deg, zeta = 30 deg.
+inline Pose tilted_pose() {
+  Pose p;
+  p.theta = deg(10);
+  p.phi = deg(10);
+  p.zeta = deg(30);
+  return p;
+}
 
 }  // namespace vibrissa::test

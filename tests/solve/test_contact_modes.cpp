@@ -13,21 +13,9 @@ namespace {
 
 using test::deg;
 using test::rat_whisker;
+using test::tilted_pose;
+using test::vertical_peg;
 
-Edge vertical_peg(double x, double y) {
-  Edge e;
-  e.point = {x, y, 0.0};
-  e.direction = {0.0, 0.0, 1.0};
-  return e;
-}
-
-Pose tilted_pose() {
-  Pose p;
-  p.theta = deg(10);
-  p.phi = deg(10);
-  p.zeta = deg(30);
-  return p;
-}
 
 TEST(PointMode, RecoversTheForceModeLoad) {
   const Whisker w = rat_whisker(100, tilted_pose());

@@ -11,27 +11,17 @@
 #include <numbers>
 #include <string>
 
+#include "../core/test_helpers.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
 namespace {
 
+using test::rat_whisker;
+using test::tilted_pose;
+using test::vertical_peg;
+
 constexpr double deg = std::numbers::pi / 180.0;
-
-Whisker curved() {
-  Pose pose;
-  pose.theta = 10.0 * deg;
-  pose.phi = 10.0 * deg;
-  pose.zeta = 30.0 * deg;
-  return Whisker::from_parabola(0.040, 12.0, WhiskerProperties{}, pose);
-}
-
-Edge peg(double x, double y) {
-  Edge e;
-  e.point = {x, y, 0.0};
-  e.direction = {0.0, 0.0, 1.0};
-  return e;
-}
 
 SolveOptions fast() {
   SolveOptions o;
@@ -41,11 +31,8 @@ SolveOptions fast() {
 
 /// The state's four numbers, as a user would type them in: no record.
 LoadState typed_in(const LoadState& s) {
-  LoadState out;
-  out.force_x = s.force_x;
-  out.force_y = s.force_y;
-  out.force_z = s.force_z;
-  out.arc_length = s.arc_length;
+  LoadState out = s;
+  out.sensitivity = LoadSensitivity{};
   return out;
 }
 
@@ -72,8 +59,8 @@ TEST(WarmStartRecord, TrackedWhiskMatchesTypedInStatesFrameByFrame) {
   // A 1 kHz protraction of 2 degrees, raising the whisker by 2 degrees, against a peg, then back: edge, point
   // and frictional edge (it sticks, slips up the edge, sticks on the reversal, slips back), each frame
   // warm-started from the previous frame's solution (with its record) and from its four numbers (without).
-  const Whisker w = curved();
-  const Edge e = peg(0.020, 0.0);
+  const Whisker w = rat_whisker(100, tilted_pose());
+  const Edge e = vertical_peg(0.020, 0.0);
   const double mu = 0.05;
   Solution edge, point, friction;
   Eigen::Vector3d contact = Eigen::Vector3d::Zero();
@@ -128,8 +115,8 @@ TEST(WarmStartRecord, TrackedWhiskMatchesTypedInStatesFrameByFrame) {
 }
 
 TEST(WarmStartRecord, EveryContactModeLeavesARecordForItsWhisker) {
-  const Whisker w = curved();
-  const Edge e = peg(0.020, 0.0);
+  const Whisker w = rat_whisker(100, tilted_pose());
+  const Edge e = vertical_peg(0.020, 0.0);
   const Solution edge = solve_edge(w, e, std::nullopt, fast());
   ASSERT_EQ(edge.status, Status::converged);
   EXPECT_EQ(edge.state.sensitivity.whisker, w.mechanics_fingerprint());
@@ -158,10 +145,10 @@ TEST(WarmStartRecord, EveryContactModeLeavesARecordForItsWhisker) {
 }
 
 TEST(WarmStartRecord, AForeignOrStaleRecordIsIgnoredAndAWrongOneCostsTimeNotTheRoot) {
-  const Whisker w = curved();
+  const Whisker w = rat_whisker(100, tilted_pose());
   Pose before_pose = w.placement().pose();
   before_pose.theta -= 0.2 * deg;
-  const Edge e = peg(0.020, 0.0);
+  const Edge e = vertical_peg(0.020, 0.0);
   // Another whisker with the same length and bending stiffness (the same scales of the unknowns), held by a
   // compliant follicle.
   WhiskerProperties held;
