@@ -50,11 +50,11 @@ std::optional<ContactKinematics<Dual<3>>> ContactEvaluations::secant_update() co
     const double predicted = k.d[0] * s[0] + k.d[1] * s[1] + k.d[2] * s[2];
     const double c = (*value[i] - k.v - predicted) / ss;
     to[i]->v = *value[i];
-    for (std::size_t j = 0; j < 3; ++j) to[i]->d[j] = k.d[j] + c * s[static_cast<Eigen::Index>(j)];
+    for (std::size_t j = 0; j < 3; ++j) {
+      to[i]->d[j] = k.d[j] + c * s[static_cast<Eigen::Index>(j)];
+      if (!std::isfinite(to[i]->d[j])) return std::nullopt;
+    }
   }
-  if (!std::isfinite(out.p_contact_B.x.d[0] + out.p_contact_B.y.d[1] + out.p_contact_B.z.d[2] + out.force_B.y.d[0] +
-                     out.force_B.z.d[1]))
-    return std::nullopt;
   return out;
 }
 

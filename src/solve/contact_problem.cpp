@@ -20,10 +20,11 @@ Eigen::Vector3d unknowns_from_state(const LoadState& s, const Scales& sc) {
 }
 
 LoadState state_from_unknowns(const Eigen::Vector3d& u, const Scales& sc) {
+  const Eigen::Vector3d load = sc.load(u);  // the numbers the walk was given (a record's key)
   LoadState s;
-  s.force_y = u[0] * sc.force;
-  s.force_z = u[1] * sc.force;
-  s.arc_length = u[2] * sc.length;
+  s.force_y = load[0];
+  s.force_z = load[1];
+  s.arc_length = load[2];
   return s;
 }
 

@@ -10,7 +10,7 @@
 // A trial point is evaluated with its Jacobian when the step is likely to be accepted short of the tolerance
 // (speculation_margin), so an accepted step costs one walk; the results do not depend on it.
 // A warm start may begin from an estimated Jacobian (JacobianEstimates: the one the previous frame's solve left
-// with its state): its first step is then a chord step that costs no walk. It is kept only if it shrinks the
+// with its state): its first step is then a chord step whose Jacobian costs no walk. It is kept only if it shrinks the
 // residual as a Newton step near the root does (estimate_contraction); otherwise it is taken again from the
 // exact Jacobian, so a wrong estimate costs one walk, damping grows only on exact Jacobians, and every later
 // Jacobian is evaluated.
@@ -119,7 +119,7 @@ LMResult levenberg_marquardt(Residual&& f, Eigen::Vector3d u, const LMBounds& bo
   Vec r;
   Jac J;
   evaluate_with_jacobian(f, u, r, J);
-  bool J_estimated = estimates && estimates->estimated();
+  bool J_estimated = M == 3 && estimates && estimates->estimated();  // a fit's convergence test needs an exact J
   if (!r.allFinite()) return out;
   double cost = r.squaredNorm();
   double lambda = 0.0;

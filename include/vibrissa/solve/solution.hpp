@@ -19,7 +19,7 @@ namespace vibrissa {
 /// the pose: a warm start from the state has its starting residual without walking the chain and takes its
 /// first Newton step from these derivatives; every later Jacobian is evaluated, and a first step that does not
 /// shrink the residual tenfold is taken again from an evaluated one. It changes what a warm solve costs (one
-/// forward evaluation and one Jacobian instead of two Jacobians on a 1 kHz frame), not its root: results agree
+/// forward evaluation and one Jacobian instead of one and two on a 1 kHz frame), not its root: results agree
 /// with a warm start from the same four numbers typed in to within the tolerance (5e-13 relative on a tracked
 /// whisk, tests/solve/test_warm_start_record.cpp).
 /// Internal to the solvers: used only on a whisker with the same mechanics_fingerprint() and only while the
