@@ -1,5 +1,6 @@
 #include "contact_evaluations.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "contact_problem.hpp"
@@ -7,16 +8,11 @@
 namespace vibrissa::detail {
 namespace {
 
-/// The nine kinematic quantities of a record, in the order LoadSensitivity stores them.
-template <class S>
-std::array<S*, 9> components(ContactKinematics<S>& k) {
-  return {&k.p_contact_B.x, &k.p_contact_B.y, &k.p_contact_B.z, &k.force_B.x, &k.force_B.y,
-          &k.force_B.z,     &k.couple_B.x,    &k.couple_B.y,    &k.couple_B.z};
-}
-template <class S>
-std::array<const S*, 9> components(const ContactKinematics<S>& k) {
-  return {&k.p_contact_B.x, &k.p_contact_B.y, &k.p_contact_B.z, &k.force_B.x, &k.force_B.y,
-          &k.force_B.z,     &k.couple_B.x,    &k.couple_B.y,    &k.couple_B.z};
+/// The nine kinematic quantities of a record (const or not), in the order LoadSensitivity stores them.
+template <class Kinematics>
+auto components(Kinematics& k) {
+  return std::array{&k.p_contact_B.x, &k.p_contact_B.y, &k.p_contact_B.z, &k.force_B.x, &k.force_B.y,
+                    &k.force_B.z,     &k.couple_B.x,    &k.couple_B.y,    &k.couple_B.z};
 }
 
 }  // namespace
