@@ -1,14 +1,16 @@
 #include "vibrissa/core/chain_jacobian.hpp"
 
 #include <array>
+#include <vector>
 
 namespace vibrissa {
 
 // The walk below is written once for two representations of the tangents (the derivatives of a carried vector
 // along the three directions): `Each`, one vector per direction (portable), and `Lanes`, the three directions
 // side by side in the lanes of a GCC/Clang vector, so that one vector operation serves all three. Where the
-// CPU has AVX2 the Lanes build runs (one instruction per operation); elsewhere Each. Both form every number
-// with the same operations in the same order, without fused multiply-adds: the results are identical.
+// CPU has AVX2 the Lanes build runs (one instruction per operation), compiled for AVX-512 (32 vector registers
+// instead of 16: fewer spills) where it has that; elsewhere Each. All form every number with the same
+// operations in the same order, without fused multiply-adds: the results are identical.
 // The helpers have internal linkage and are inlined into each build, so the ABI of passing AVX-sized vectors
 // (the -Wpsabi note of GCC and Clang) never applies.
 #if defined(__clang__)
@@ -121,19 +123,13 @@ template <class T>
 struct Carried {
   V x;
   T dx;
-  /// x -> G x, dx -> G (dx + dtheta x x): turned by G whose rotation vector moved by J_r dtheta (see the
-  /// header).
-  VIBRISSA_LANE_INLINE void turn(const Mat3<double>& G, const T& dtheta) {
+  /// x -> G x (+ offset), dx -> G (dx + dtheta x x): turned by G whose rotation vector moved by J_r dtheta (see
+  /// the header). The value is turned by the matrix the tangents need anyway (9 multiplications, where
+  /// deflect()'s split form, shorter on its critical path, takes 21): it agrees with deflect<double>'s to
+  /// rounding, not bit for bit.
+  VIBRISSA_LANE_INLINE void turn(const Mat3<double>& G, const T& dtheta, const V* offset = nullptr) {
     dx = times(G, dx + cross(dtheta, x));
-    x = G * x;
-  }
-  /// The same for a joint's turn G = exp(omega): the value exactly as deflect() turns it (split form, plus
-  /// `offset`), so that values here equal deflect<double>'s bit for bit.
-  VIBRISSA_LANE_INLINE void turn(const Mat3<double>& G, const T& dtheta, const V& omega, double t2, double a,
-                                 double b, const V* offset = nullptr) {
-    dx = times(G, dx + cross(dtheta, x));
-    const detail::RotationTerms<double> terms(omega, t2, x);
-    x = offset ? terms.turned(a, b, *offset) : terms.turned(a, b);
+    x = offset ? *offset + G * x : G * x;
   }
 };
 
@@ -215,44 +211,53 @@ VIBRISSA_LANE_INLINE ContactKinematics<D> walk(const Whisker& w, const V3<D>& fo
     const T dtheta = domega - scaled(b, wd) + scaled(c, cross(omega, wd));
     if (j > 0) {
       const V link(link_B[u - 1]);
-      r.turn(G, dtheta, omega, t2, a, b, &link);
+      r.turn(G, dtheta, &link);
     } else {
-      r.turn(G, dtheta, omega, t2, a, b);
+      r.turn(G, dtheta);
     }
-    F.turn(G, dtheta, omega, t2, a, b);
-    if (couple) C.turn(G, dtheta, omega, t2, a, b);
+    F.turn(G, dtheta);
+    if (couple) C.turn(G, dtheta);
   }
   return {T::pack(r.x, r.dx), T::pack(F.x, F.dx), T::pack(C.x, C.dx)};
 }
 
+ContactKinematics<D> walk_portable(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L, const D& s) {
+  return walk<Each>(w, force_L, couple_L, s);
+}
+
 #if defined(__x86_64__) || defined(__i386__)
-#define VIBRISSA_LANES_AVX2 1
-/// The Lanes build for CPUs with AVX2 (chosen at run time: the library itself targets baseline x86-64).
+#define VIBRISSA_LANES_X86 1
+// The Lanes builds, chosen at run time (the library itself targets baseline x86-64). __builtin_cpu_supports
+// also checks that the operating system saves the AVX and AVX-512 registers.
 [[gnu::target("avx2")]] ContactKinematics<D> walk_avx2(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L,
                                                        const D& s) {
   return walk<Lanes>(w, force_L, couple_L, s);
 }
-bool cpu_has_avx2() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2");
+[[gnu::target("avx2,avx512f,avx512vl")]] ContactKinematics<D> walk_avx512(const Whisker& w, const V3<D>& force_L,
+                                                                          const V3<D>& couple_L, const D& s) {
+  return walk<Lanes>(w, force_L, couple_L, s);
 }
 #endif
+
+std::vector<detail::AnalyticBuild> builds_of_this_cpu() {
+  std::vector<detail::AnalyticBuild> out{{"portable", &walk_portable}};
+#ifdef VIBRISSA_LANES_X86
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx2")) out.push_back({"avx2", &walk_avx2});
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl"))
+    out.push_back({"avx512", &walk_avx512});
+#endif
+  return out;
+}
 
 }  // namespace
 
+std::vector<detail::AnalyticBuild> detail::analytic_builds() { return builds_of_this_cpu(); }
+
 ContactKinematics<D> deflect_analytic(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L, const D& s) {
   if (w.properties().scheme == Scheme::paper) return deflect_published<D>(w, force_L, couple_L, s);
-#ifdef VIBRISSA_LANES_AVX2
-  static const bool avx2 = cpu_has_avx2();
-  if (avx2) return walk_avx2(w, force_L, couple_L, s);
-#endif
-  return walk<Each>(w, force_L, couple_L, s);
-}
-
-ContactKinematics<D> detail::deflect_analytic_portable(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L,
-                                                       const D& s) {
-  if (w.properties().scheme == Scheme::paper) return deflect_published<D>(w, force_L, couple_L, s);
-  return walk<Each>(w, force_L, couple_L, s);
+  static const auto fastest = builds_of_this_cpu().back().walk;
+  return fastest(w, force_L, couple_L, s);
 }
 
 }  // namespace vibrissa

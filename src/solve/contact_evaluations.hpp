@@ -36,7 +36,7 @@ ContactKinematics<S> contact_at(const Whisker& w, const Scales& sc, const std::a
 /// was evaluated at (F_y, F_z, s: exactly the numbers given to the walk). An evaluation at the same load is
 /// taken from here instead of walking the chain again: the converged point's kinematics give the Solution's
 /// outputs (fill_solution; for an attempt that stopped unconverged, its last Jacobian evaluation's values).
-/// Values of a Jacobian evaluation are the same numbers as the double walk's (core/chain_jacobian.hpp).
+/// Values of a Jacobian evaluation agree with the double walk's to rounding (core/chain_jacobian.hpp).
 /// A record made for one whisker may seed attempts on the same whisker (frictional edge: the previous frame's
 /// Jacobian serves both the frictionless and the stick solve, which start there).
 ///

@@ -8,7 +8,7 @@
 // the method for thin, compliant tips. When M != 3 a fit also converges at a stationary point of the squares
 // (|J^T r| <= tolerance * max|J|), since an over-determined fit need not reach zero residual.
 // A trial point is evaluated with its Jacobian when the step is likely to be accepted short of the tolerance
-// (speculation_margin), so an accepted step costs one walk; the results do not depend on it.
+// (speculation_margin), so an accepted step costs one walk; the results depend on it in their last bits at most.
 // A warm start may begin from an estimated Jacobian (JacobianEstimates: the one the previous frame's solve left
 // with its state): its first step is then a chord step whose Jacobian costs no walk. It is kept only if it shrinks the
 // residual as a Newton step near the root does (estimate_contraction); otherwise it is taken again from the
@@ -45,8 +45,9 @@ struct LMBounds {
 /// of its value alone, then the Jacobian if accepted) when the residual there is predicted to stay above this
 /// many tolerances, so that an accepted step needs no second walk. The prediction is Newton's quadratic model,
 /// r_next = r^3 / r_previous^2 (r^2 for the first step), in the max-norm of the scaled residual. A Jacobian
-/// evaluation's values are the forward evaluation's (core/chain_jacobian.hpp), so what is speculated changes the
-/// cost only, never a result: a wrong guess costs the Jacobian's extra work (a rejected or converged trial).
+/// evaluation's values agree with the forward evaluation's to rounding (core/chain_jacobian.hpp), so what is
+/// speculated changes the cost, and a result in its last bits at most (a converged point's outputs come from
+/// whichever evaluation it had): a wrong guess costs the Jacobian's extra work (a rejected or converged trial).
 inline constexpr double speculation_margin = 1e3;
 
 /// Whether the Jacobian a residual's evaluations served last is an estimate, and how to drop it

@@ -8,26 +8,33 @@
 //     dv'    = exp(omega) (dv + dtheta x v)            for every carried vector v (rest axes: no Q),
 // so a tangent costs a few cross products and one product with the joint's matrix per carried vector.
 // The result equals deflect<Dual<3>> to rounding (tests/core/test_chain_jacobian.cpp); the Dual<3>
-// version stays the reference. deflect_for_solve() picks the fastest exact evaluation for a scalar.
+// version stays the reference. Its values are turned by the joint's matrix, which the tangents need anyway,
+// where deflect() uses the split form (shorter on its critical path): they agree with deflect<double>'s to
+// rounding, not bit for bit. deflect_for_solve() picks the fastest exact evaluation for a scalar.
 #include <type_traits>
+#include <vector>
 
 #include "vibrissa/core/chain.hpp"
 
 namespace vibrissa {
 
 /// deflect() of the second-order scheme on Dual<3> inputs by analytic tangents (the derivatives of the
-/// outputs along the three derivative directions of the inputs). Values equal deflect<double>'s bit for bit.
-/// Where the CPU has AVX2 the three directions run side by side in vector lanes (same numbers).
+/// outputs along the three derivative directions of the inputs). Values equal deflect<double>'s to rounding.
+/// Where the CPU has AVX2 the three directions run side by side in vector lanes (same numbers bit for bit).
 /// The paper scheme falls back to deflect_published<Dual<3>>.
 ContactKinematics<Dual<3>> deflect_analytic(const Whisker& w, const V3<Dual<3>>& force_L,
                                             const V3<Dual<3>>& couple_L, const Dual<3>& s);
 
 namespace detail {
-/// deflect_analytic() in its portable build (one vector per derivative direction), the one that runs where the
-/// CPU lacks AVX2; elsewhere deflect_analytic() runs the three directions in vector lanes. The two give the
-/// same numbers bit for bit (tested).
-ContactKinematics<Dual<3>> deflect_analytic_portable(const Whisker& w, const V3<Dual<3>>& force_L,
-                                                     const V3<Dual<3>>& couple_L, const Dual<3>& s);
+/// One build of deflect_analytic()'s second-order walk (no paper-scheme fallback).
+struct AnalyticBuild {
+  const char* name;
+  ContactKinematics<Dual<3>> (*walk)(const Whisker&, const V3<Dual<3>>&, const V3<Dual<3>>&, const Dual<3>&);
+};
+/// The builds this CPU runs: "portable" (one vector per derivative direction), then on x86 with AVX2 "avx2"
+/// (the three directions in vector lanes) and with AVX-512 "avx512" (the same code compiled for it).
+/// deflect_analytic() runs the last; all give the same numbers bit for bit (tested).
+std::vector<AnalyticBuild> analytic_builds();
 }  // namespace detail
 
 /// deflect() for the solvers: doubles as they are, Dual<3> through deflect_analytic().
