@@ -98,3 +98,16 @@ def test_reconstruction_columns_round_trip(tmp_path):
             assert message in str(e), str(e)
         else:
             raise AssertionError(f"{kw} accepted")
+
+
+def test_a_track_file_that_crashes_libhdf5_is_a_value_error(tmp_path):
+    """libhdf5 divides by zero on this fuzzed DeepLabCut file (tests/data/deeplabcut/README.md); it meets the
+    file in a child process first, so the interpreter survives with a ValueError naming the file."""
+    import pathlib
+    import pytest
+    crash = pathlib.Path(__file__).resolve().parents[2] / "tests/data/deeplabcut/libhdf5_crash_fpe.h5"
+    write_views(tmp_path)
+    with pytest.raises(ValueError, match=r"libhdf5_crash_fpe\.h5: libhdf5 crashed reading this file \(Floating point exception\)"):
+        vibrissa.reconstruct(crash, tmp_path / "front.csv", tmp_path / "cams.json")
+    trial, _ = vibrissa.reconstruct(tmp_path / "top.csv", tmp_path / "front.csv", tmp_path / "cams.json")
+    assert len(trial.time) == 12  # the interpreter and the library go on

@@ -1,6 +1,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "guarded_read.hpp"
 #include "vibrissa/io/trial_io.hpp"
 
 namespace vibrissa::io {
@@ -16,8 +17,9 @@ std::string extension_of(const std::string& path) {
 trial::Trial read_trial(const std::string& path) {
   const std::string ext = extension_of(path);
   if (ext == ".csv") return read_trial_csv(path);
-  if (ext == ".h5" || ext == ".hdf5") return read_trial_h5(path);
-  if (ext == ".mat") return read_trial_mat(path);
+  // The libraries' parsers meet the file in a child process first (guarded_read.hpp).
+  if (ext == ".h5" || ext == ".hdf5") return guarded_read(path, "libhdf5", [&] { return read_trial_h5(path); });
+  if (ext == ".mat") return guarded_read(path, "matio", [&] { return read_trial_mat(path); });
   throw std::invalid_argument(path + ": unknown trial format '" + ext + "' (expected .csv, .h5, .hdf5 or .mat)");
 }
 

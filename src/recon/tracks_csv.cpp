@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "../io/guarded_read.hpp"
 #include "text_cells.hpp"
 #include "vibrissa/recon/tracks.hpp"
 
@@ -91,7 +92,8 @@ Tracks2D read_tracks(const std::string& path, const TrackSelection& sel) {
       throw std::invalid_argument(path + ": a .whiskers file needs its .measurements file for whisker identities");
     return janelia_tracks(path, sel.measurements, sel.identity);
   }
-  if (ends_with(".h5") || ends_with(".hdf5")) return read_dlc_h5(path, sel.bodyparts, sel.individual);
+  if (ends_with(".h5") || ends_with(".hdf5"))  // libhdf5 meets the file in a child process first
+    return io::guarded_read(path, "libhdf5", [&] { return read_dlc_h5(path, sel.bodyparts, sel.individual); });
   if (ends_with(".csv")) {
     std::ifstream in(path);
     if (!in) throw std::invalid_argument(path + ": cannot open track file");

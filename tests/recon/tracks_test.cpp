@@ -195,6 +195,16 @@ TEST(DeepLabCutH5, RejectsFilesThatAreNotPandasTables) {
                     "with to_hdf(..., format=\"table\"))");
 }
 
+TEST(DeepLabCutH5, AFileThatCrashesLibhdf5IsAnErrorNamingIt) {
+  // libhdf5 1.10.8 divides by zero opening a dataset of this fuzzed file (tests/data/deeplabcut/README.md): read
+  // through read_tracks, libhdf5 meets it in a child process first (src/io/guarded_read.hpp), and this process
+  // survives with an error. (Called directly, read_dlc_h5 would end this process with SIGFPE.)
+  const std::string crash = dlc_data + "libhdf5_crash_fpe.h5";
+  EXPECT_EQ(error_of([&] { read_tracks(crash); }),
+            crash + ": libhdf5 crashed reading this file (Floating point exception): it is corrupted, or not the "
+                    "format its extension says; nothing was read");
+  EXPECT_THROW(read_tracks(crash), std::invalid_argument);
+}
 
 // Files written by the Janelia Whisker Tracker itself (tests/data/janelia/README.md): `trace` of a synthetic
 // video of one dark quadratic whisker, x = 40 + s, y = 100 + 3 f + (-0.2 + 0.04 f) s + 0.0012 s^2 px (frame f,
