@@ -2,59 +2,116 @@
 
 #include <stdexcept>
 
-#if defined(__unix__) || defined(__APPLE__)
+#if defined(__linux__)
+#include <dirent.h>
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <csignal>
-#include <cstring>
+#include <cstdio>
 #endif
 
 namespace vibrissa::io {
 
-#if defined(__unix__) || defined(__APPLE__)
+#if defined(__linux__)
 namespace {
-// Exit codes of the child: the read returned, or threw (the caller's own read will throw the same).
-constexpr int kReturned = 0;
-constexpr int kThrew = 86;
+
+/// Reported by the child through the pipe before it leaves: the read returned, or threw.
+constexpr char kReturned = 'R';
+constexpr char kThrew = 'T';
+
+/// Signals that mean the reading code crashed (the file's fault), with fixed names (strsignal may translate).
+const char* crash_name(int sig) {
+  switch (sig) {
+    case SIGSEGV: return "segmentation fault";
+    case SIGBUS: return "bus error";
+    case SIGFPE: return "arithmetic exception";
+    case SIGILL: return "illegal instruction";
+    case SIGABRT: return "abort";
+    case SIGSYS: return "bad system call";
+    case SIGTRAP: return "trap";
+    default: return nullptr;
+  }
+}
+
+/// In the child: a signal with a handler gets the default disposition (an ignored one stays ignored), so that
+/// Ctrl-C ends the child without running the parent's clean-up handlers (io/temporary_files.cpp) a second time,
+/// and a crash ends it without the parent's crash reporters (a sanitizer's) printing for it.
+void default_handled_signals() {
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGSYS, SIGTRAP}) {
+    struct sigaction current {};
+    if (sigaction(sig, nullptr, &current) == 0 && current.sa_handler != SIG_IGN) std::signal(sig, SIG_DFL);
+  }
+}
+
+std::string corrupt(const std::string& path, std::string_view library, const std::string& how) {
+  return path + ": " + std::string(library) + " " + how + ": it is corrupted, or not the format its extension says; nothing was read";
+}
+
 }  // namespace
+
+bool single_threaded() {
+  DIR* tasks = ::opendir("/proc/self/task");
+  if (!tasks) return false;
+  int n = 0;
+  while (const dirent* e = ::readdir(tasks))
+    if (e->d_name[0] != '.') ++n;
+  ::closedir(tasks);
+  return n == 1;
+}
 
 void probe_in_child(const std::string& path, std::string_view library, void (*read)(const void* context),
                     const void* context) {
+  if (!single_threaded()) return;
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) return;
+  std::fflush(nullptr);  // nothing buffered is written twice if the library calls exit() in the child
   const pid_t pid = ::fork();
-  if (pid < 0) return;  // no child (process limit): read in-process, as without the guard
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    return;  // no child (process limit): read in-process, as without the guard
+  }
   if (pid == 0) {
-    // The child: default dispositions, so that Ctrl-C ends it without running the parent's clean-up handlers
-    // (io/temporary_files.cpp) a second time and a crash ends it without the parent's crash reporters (Python's
-    // faulthandler, a sanitizer's) printing for it; _exit, so that nothing of the parent's is flushed or destroyed.
-    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(sig, SIG_DFL);
-    int code = kReturned;
+    ::close(fds[0]);
+    default_handled_signals();
+    char outcome = kReturned;
     try {
       read(context);
     } catch (...) {
-      code = kThrew;
+      outcome = kThrew;
     }
-    ::_exit(code);
+    (void)!::write(fds[1], &outcome, 1);
+    ::_exit(0);  // nothing of the parent's is flushed or destroyed
   }
+  ::close(fds[1]);
+  // The outcome travels through the pipe, so the guard holds even where the child cannot be waited for (a
+  // process that ignores SIGCHLD has its children reaped at once).
+  char outcome = 0;
+  ssize_t got;
+  while ((got = ::read(fds[0], &outcome, 1)) < 0 && errno == EINTR) {
+  }
+  ::close(fds[0]);
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return;  // cannot tell how it ended: read in-process
-  if (WIFEXITED(status) && (WEXITSTATUS(status) == kReturned || WEXITSTATUS(status) == kThrew)) return;
-  const std::string what = std::string(library);
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    if (sig == SIGINT || sig == SIGTERM || sig == SIGHUP)
-      throw std::runtime_error(path + ": reading was interrupted (signal " + std::to_string(sig) + ")");
-    const char* name = strsignal(sig);
-    throw std::invalid_argument(path + ": " + what + " crashed reading this file (" + (name ? name : "signal") +
-                                "): it is corrupted, or not the format its extension says; nothing was read");
+  pid_t waited;
+  while ((waited = ::waitpid(pid, &status, 0)) < 0 && errno == EINTR) {
   }
-  throw std::invalid_argument(path + ": " + what + " failed reading this file (its reader process exited with " +
-                              std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-                              "): it is corrupted, or not the format its extension says; nothing was read");
+  if (got == 1 && (outcome == kReturned || outcome == kThrew)) return;
+  if (waited == pid && WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    if (const char* name = crash_name(sig)) throw std::invalid_argument(corrupt(path, library, std::string("crashed reading this file (") + name + ")"));
+    throw std::runtime_error(path + ": the process reading it was killed by signal " + std::to_string(sig) +
+                             " (interrupted, or out of memory); nothing was read");
+  }
+  if (waited == pid && WIFEXITED(status))
+    throw std::invalid_argument(corrupt(path, library, "failed reading this file (its reader process exited with " +
+                                                           std::to_string(WEXITSTATUS(status)) + ")"));
+  throw std::invalid_argument(corrupt(path, library, "failed reading this file (its reader process ended without a word)"));
 }
 #else
+bool single_threaded() { return false; }
 void probe_in_child(const std::string&, std::string_view, void (*)(const void*), const void*) {}
 #endif
 

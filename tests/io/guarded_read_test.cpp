@@ -1,12 +1,22 @@
 // Files parsed by third-party libraries are read once in a child process first (src/io/guarded_read.hpp): a
 // crash there is an error naming the file, the caller's process survives, and otherwise the caller's own read
-// returns or throws exactly what it would without the guard.
+// returns or throws exactly what it would without the guard. Only a single-threaded process forks; ctest runs
+// each test in a process of its own, so the tests that need the guard skip themselves in a process that has
+// started other threads.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <condition_variable>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "io/guarded_read.hpp"
 
@@ -22,14 +32,35 @@ std::string error_of(const auto& f) {
   return "no error";
 }
 
-TEST(GuardedRead, ReturnsWhatTheReadReturnsReadingOnceHere) {
+#define REQUIRE_GUARD() \
+  if (!single_threaded()) GTEST_SKIP() << "this process runs other threads: the guard is off"
+
+/// Appends the reading process's id to a file and returns the number of lines there: which processes read.
+struct PidLog {
+  std::filesystem::path file = std::filesystem::temp_directory_path() / ("guarded_read_" + std::to_string(::getpid()));
+  PidLog() { std::filesystem::remove(file); }
+  ~PidLog() { std::filesystem::remove(file); }
+  void append() const { std::ofstream(file, std::ios::app) << ::getpid() << "\n"; }
+  [[nodiscard]] int readers() const {
+    std::ifstream in(file);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) ++n;
+    return n;
+  }
+};
+
+TEST(GuardedRead, ReadsInAChildThenHereAndReturnsWhatTheReadReturns) {
+  REQUIRE_GUARD();
+  const PidLog log;
   int reads_here = 0;  // the child's reads count in its own copy of this variable
   const int value = guarded_read("a.h5", "libhdf5", [&] {
     ++reads_here;
+    log.append();
     return 42;
   });
   EXPECT_EQ(value, 42);
   EXPECT_EQ(reads_here, 1);
+  EXPECT_EQ(log.readers(), 2);  // the child, then this process
 }
 
 TEST(GuardedRead, ThrowsTheReadsOwnError) {
@@ -42,6 +73,7 @@ TEST(GuardedRead, ThrowsTheReadsOwnError) {
 }
 
 TEST(GuardedRead, ALibraryCrashIsAnErrorNamingTheFile) {
+  REQUIRE_GUARD();
   int reads_here = 0;
   const auto crashing = [&] {
     ++reads_here;
@@ -49,31 +81,74 @@ TEST(GuardedRead, ALibraryCrashIsAnErrorNamingTheFile) {
     return 0;
   };
   EXPECT_EQ(error_of([&] { guarded_read("broken.h5", "libhdf5", crashing); }),
-            "broken.h5: libhdf5 crashed reading this file (Segmentation fault): it is corrupted, or not the format "
+            "broken.h5: libhdf5 crashed reading this file (segmentation fault): it is corrupted, or not the format "
             "its extension says; nothing was read");
   EXPECT_EQ(reads_here, 0);  // the crashing read never ran in this process
   EXPECT_THROW(guarded_read("broken.h5", "libhdf5", crashing), std::invalid_argument);
 }
 
-TEST(GuardedRead, AReaderThatExitsIsAnError) {
-  // How a sanitizer ends a process after a report (exit code 1), or a library that calls exit().
-  const auto exiting = [] {
-    std::_Exit(1);
-    return 0;
-  };
-  EXPECT_EQ(error_of([&] { guarded_read("odd.mat", "matio", exiting); }),
-            "odd.mat: matio failed reading this file (its reader process exited with 1): it is corrupted, or not the "
-            "format its extension says; nothing was read");
+TEST(GuardedRead, HoldsWhereChildrenAreReapedAtOnce) {
+  // A process that ignores SIGCHLD cannot wait for its children; the outcome comes through a pipe instead.
+  REQUIRE_GUARD();
+  const auto before = std::signal(SIGCHLD, SIG_IGN);
+  const std::string message = error_of([] { guarded_read("broken.h5", "libhdf5", [] { std::raise(SIGFPE); return 0; }); });
+  const int value = guarded_read("a.h5", "libhdf5", [] { return 7; });
+  std::signal(SIGCHLD, before);
+  EXPECT_EQ(message, "broken.h5: libhdf5 failed reading this file (its reader process ended without a word): it is "
+                     "corrupted, or not the format its extension says; nothing was read");
+  EXPECT_EQ(value, 7);
 }
 
-TEST(GuardedRead, AnInterruptedReadSaysSo) {
+TEST(GuardedRead, AReaderThatExitsIsAnError) {
+  // How a sanitizer ends a process after a report (exit code 1), or a library that calls exit(), even exit(0).
+  REQUIRE_GUARD();
+  for (const int code : {1, 0}) {
+    EXPECT_EQ(error_of([&] { guarded_read("odd.mat", "matio", [&] { std::_Exit(code); return 0; }); }),
+              "odd.mat: matio failed reading this file (its reader process exited with " + std::to_string(code) +
+                  "): it is corrupted, or not the format its extension says; nothing was read");
+  }
+}
+
+TEST(GuardedRead, AnInterruptedReadSaysSoAndAnIgnoredSignalStaysIgnored) {
+  REQUIRE_GUARD();
   const auto interrupted = [] {
     std::raise(SIGINT);  // Ctrl-C while the child reads: the child ends (default disposition)
-    return 0;
+    return 5;
   };
   EXPECT_THROW(guarded_read("big.mat", "matio", interrupted), std::runtime_error);
   EXPECT_EQ(error_of([&] { guarded_read("big.mat", "matio", interrupted); }),
-            "big.mat: reading was interrupted (signal " + std::to_string(SIGINT) + ")");
+            "big.mat: the process reading it was killed by signal " + std::to_string(SIGINT) +
+                " (interrupted, or out of memory); nothing was read");
+  // Under nohup (SIGINT, SIGHUP ignored) the child ignores them too, and the read goes on.
+  const auto before = std::signal(SIGINT, SIG_IGN);
+  const std::string message = error_of([&] { EXPECT_EQ(guarded_read("big.mat", "matio", interrupted), 5); });
+  std::signal(SIGINT, before);
+  EXPECT_EQ(message, "no error");
+}
+
+TEST(GuardedRead, AMultithreadedProcessReadsInProcessOnly) {
+  // A fork of a multithreaded process may copy a lock another thread holds (thread-safe libhdf5): no child.
+  std::mutex m;
+  std::condition_variable cv;
+  bool done = false;
+  std::thread other([&] {
+    std::unique_lock<std::mutex> lock(m);
+    cv.wait(lock, [&] { return done; });
+  });
+  EXPECT_FALSE(single_threaded());
+  const PidLog log;
+  const int value = guarded_read("a.h5", "libhdf5", [&] {
+    log.append();
+    return 3;
+  });
+  {
+    const std::lock_guard<std::mutex> lock(m);
+    done = true;
+  }
+  cv.notify_one();
+  other.join();
+  EXPECT_EQ(value, 3);
+  EXPECT_EQ(log.readers(), 1);
 }
 
 }  // namespace
