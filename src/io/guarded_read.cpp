@@ -47,7 +47,8 @@ void default_handled_signals() {
 }
 
 std::string corrupt(const std::string& path, std::string_view library, const std::string& how) {
-  return path + ": " + std::string(library) + " " + how + ": it is corrupted, or not the format its extension says; nothing was read";
+  return path + ": " + std::string(library) + " " + how +
+         ": it is corrupted, or not the format its extension says; nothing was read";
 }
 
 }  // namespace
@@ -101,14 +102,16 @@ void probe_in_child(const std::string& path, std::string_view library, void (*re
   if (got == 1 && (outcome == kReturned || outcome == kThrew)) return;
   if (waited == pid && WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
-    if (const char* name = crash_name(sig)) throw std::invalid_argument(corrupt(path, library, std::string("crashed reading this file (") + name + ")"));
+    if (const char* name = crash_name(sig))
+      throw std::invalid_argument(corrupt(path, library, std::string("crashed reading this file (") + name + ")"));
     throw std::runtime_error(path + ": the process reading it was killed by signal " + std::to_string(sig) +
                              " (interrupted, or out of memory); nothing was read");
   }
   if (waited == pid && WIFEXITED(status))
     throw std::invalid_argument(corrupt(path, library, "failed reading this file (its reader process exited with " +
                                                            std::to_string(WEXITSTATUS(status)) + ")"));
-  throw std::invalid_argument(corrupt(path, library, "failed reading this file (its reader process ended without a word)"));
+  throw std::invalid_argument(
+      corrupt(path, library, "failed reading this file (its reader process ended without a word)"));
 }
 #else
 bool single_threaded() { return false; }

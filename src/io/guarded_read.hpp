@@ -5,7 +5,8 @@
 // caller, and becomes an error that names the file. Only a single-threaded process forks for this: a fork of a
 // multithreaded one copies locks other threads may hold (Debian's libhdf5 is built thread-safe, with a global
 // lock), and its child could wait on them forever; so the CLI is guarded, and a Python process, which usually
-// runs other threads (NumPy's BLAS pool, the package's worker thread), usually is not. Our own parsers (JSON, CSV, Janelia, pickle) are fuzzed and read in-process only.
+// runs other threads (NumPy's BLAS pool, the package's worker thread), usually is not. Our own parsers (JSON,
+// CSV, Janelia, pickle) are fuzzed and read in-process only.
 #include <string>
 #include <string_view>
 

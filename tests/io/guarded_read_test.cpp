@@ -91,7 +91,12 @@ TEST(GuardedRead, HoldsWhereChildrenAreReapedAtOnce) {
   // A process that ignores SIGCHLD cannot wait for its children; the outcome comes through a pipe instead.
   REQUIRE_GUARD();
   const auto before = std::signal(SIGCHLD, SIG_IGN);
-  const std::string message = error_of([] { guarded_read("broken.h5", "libhdf5", [] { std::raise(SIGFPE); return 0; }); });
+  const std::string message = error_of([] {
+    guarded_read("broken.h5", "libhdf5", [] {
+      std::raise(SIGFPE);
+      return 0;
+    });
+  });
   const int value = guarded_read("a.h5", "libhdf5", [] { return 7; });
   std::signal(SIGCHLD, before);
   EXPECT_EQ(message, "broken.h5: libhdf5 failed reading this file (its reader process ended without a word): it is "

@@ -224,7 +224,8 @@ TEST(DeepLabCutH5, AFileThatCrashesLibhdf5IsAnErrorNamingIt) {
   if (!read_dlc_h5_crashes(crash)) GTEST_SKIP() << "this libhdf5 (or CPU) reads the file without crashing";
   const std::string message = error_of([&] { read_tracks(crash); });
   EXPECT_TRUE(message.starts_with(crash + ": libhdf5 crashed reading this file (")) << message;
-  EXPECT_TRUE(message.ends_with("): it is corrupted, or not the format its extension says; nothing was read")) << message;
+  EXPECT_TRUE(message.ends_with("): it is corrupted, or not the format its extension says; nothing was read"))
+      << message;
   EXPECT_THROW(read_tracks(crash), std::invalid_argument);
 }
 
