@@ -160,6 +160,7 @@ const TrackedFrame& ContactTracker::step(const Placement& X, std::span<const Edg
     Solution& s = frame_.solution;
     switch (s.status) {
       case Status::converged:
+      case Status::second_contact:  // (object modes only)
         if (e.contains(e.coordinate(s.contact_point_W))) {
           record_converged(&e);
         } else {

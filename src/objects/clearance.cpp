@@ -45,13 +45,13 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
   };
   // Sphere tracing along the nodes: a node is queried only if its bound (from the shape's box and the last
   // queried node) lets a neighbouring link come below the threshold.
-  double last_gap = std::numeric_limits<double>::infinity();
+  double last_gap = -std::numeric_limits<double>::infinity();  // no node queried yet: no bound from it
   double last_arc = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const double from_box = object.bound_distance_W(nodes[i]) - radius(i);
     const double from_last = last_gap - K * (arc[i] - last_arc);
     g[i].lower = std::max(from_box, from_last);
-    if (g[i].lower < threshold + K * longest) {
+    if (!(g[i].lower >= threshold + K * longest)) {  // (an infinite threshold: every node)
       evaluate(i);
       last_gap = g[i].gap;
       last_arc = arc[i];
@@ -60,7 +60,7 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
   // Each link that may come below the threshold: the minimum of the gap along it.
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const double l = arc[i + 1] - arc[i];
-    if (0.5 * (g[i].lower + g[i + 1].lower - K * l) >= threshold) continue;
+    if (0.5 * (g[i].lower + g[i + 1].lower - K * l) >= threshold && std::isfinite(threshold)) continue;
     evaluate(i);
     evaluate(i + 1);
     const Eigen::Vector3d a = nodes[i], ab = nodes[i + 1] - nodes[i];
