@@ -165,3 +165,41 @@ TEST(ObjectContact, NoPointOfTheWhiskerIsInsideOverRandomPosesAndObjects) {
   EXPECT_GT(converged, 0.85 * valid);
   std::cout << "converged " << converged << ", second contact " << second << " of " << valid << "\n";
 }
+
+TEST(ObjectContact, FrictionZeroIsFrictionlessInfiniteSticksAndSlipMeetsTheCone) {
+  const Whisker w = rat_whisker(100, tilted_pose());
+  const Eigen::Vector3d target = w.placement().to_world(w.rest_point_B(0.022));
+  const Eigen::Vector3d push = w.placement().R_WB.col(1);
+  const Cylinder peg(target + 0.0015 * push, Eigen::Vector3d(0.3, -0.2, 1.0), 0.002);
+  const ObjectContact o{&peg, {}, true};
+  const Solution free = solve_object(w, o);
+  ASSERT_EQ(free.status, Status::converged);
+  // A previous contact 0.3 mm along the peg's axis from the frictionless one (on the surface).
+  const Eigen::Vector3d previous = free.contact_point_W + 0.0003 * peg.axis();
+  const Solution zero = solve_frictional_object(w, w.placement(), o, 0.0, previous);
+  ASSERT_EQ(zero.status, Status::converged);
+  EXPECT_EQ(zero.friction, FrictionState::slip);
+  EXPECT_LT(relative(zero.force_W, free.force_W), 1e-12);
+  const Solution stuck = solve_frictional_object(w, w.placement(), o, 1e9, previous);
+  ASSERT_EQ(stuck.status, Status::converged) << stuck.message;
+  EXPECT_EQ(stuck.friction, FrictionState::stick);
+  // Stuck: the contact did not move across the whisker (along b) from the previous point.
+  EXPECT_NEAR((stuck.contact_point_W - previous).dot(stuck.surface->friction_direction_W), 0.0, 1e-12);
+  const double needed = std::abs(stuck.surface->friction_force) / *stuck.normal_force;
+  ASSERT_GT(needed, 0.01);
+  const double mu = 0.5 * needed;  // less than sticking needs: it slips, to the cone's edge
+  const Solution slip = solve_frictional_object(w, w.placement(), o, mu, previous);
+  ASSERT_EQ(slip.status, Status::converged) << slip.message;
+  EXPECT_EQ(slip.friction, FrictionState::slip);
+  EXPECT_NEAR(std::abs(slip.surface->friction_force), mu * *slip.normal_force, 1e-9 * *slip.normal_force);
+  // The force has no part along the whisker in the tangent plane: F = F_n n + F_b b.
+  const Eigen::Vector3d rest = slip.force_W - *slip.normal_force * slip.surface->normal_W -
+                               slip.surface->friction_force * slip.surface->friction_direction_W;
+  EXPECT_LT(rest.norm(), 1e-9 * slip.force_magnitude);
+  // Between the previous point and the frictionless one (spec §3.1).
+  const double from = (slip.contact_point_W - previous).dot(slip.surface->friction_direction_W);
+  const double to = (free.contact_point_W - previous).dot(slip.surface->friction_direction_W);
+  EXPECT_GT(slip.surface->friction_force * stuck.surface->friction_force, 0.0);  // opposing the same slip
+  EXPECT_GT(from / to, 0.0);
+  EXPECT_LT(from / to, 1.0);
+}
