@@ -24,6 +24,12 @@ SI units throughout: m, N, N·m, Pa, rad. World-frame quantities unless the name
 
 from ._vibrissa import (  # noqa: F401
     BaseJoint,
+    Box,
+    Cylinder,
+    Mesh,
+    Plane,
+    Shape,
+    Sphere,
     BaseWrenchIdentifiability,
     BaseWrenchResult,
     BaseWrenchRoot,
@@ -53,6 +59,8 @@ from ._vibrissa import (  # noqa: F401
     solve_edge,
     solve_force,
     solve_frictional_edge,
+    solve_frictional_object,
+    solve_object,
     solve_base_wrench,
     solve_point,
     status_from_string,
