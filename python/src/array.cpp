@@ -76,6 +76,7 @@ py::dict array_datasets(const ArrayRun& run) {
   d["render/rest"] = shaped(r.rest_shapes, {R, W, N, 3});
   d["render/deflected"] = shaped(r.deflected_shapes, {R, W, N, 3});
   d["render/edges"] = shaped(r.render_edges, {R, E, 2, 3});
+  d["render/object_poses"] = shaped(r.render_object_poses, {R, static_cast<py::ssize_t>(r.n_objects), 12});
   return d;
 }
 

@@ -13,6 +13,8 @@
 #include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/json_file.hpp"
 #include "vibrissa/io/nan_reasons.hpp"
+#include "vibrissa/io/object_json.hpp"
+#include "vibrissa/objects/mesh.hpp"
 
 namespace vibrissa::io {
 
@@ -78,6 +80,26 @@ void create_array_h5(const ArrayResult& r, const SimulationConfig& c, const std:
     h5::write_dataset(render.get(), "rest", r.rest_shapes, {R, W, N, 3}, in("m"));
     h5::write_dataset(render.get(), "deflected", r.deflected_shapes, {R, W, N, 3}, in("m"));
     h5::write_dataset(render.get(), "edges", r.render_edges, {R, r.n_edges, 2, 3}, in("m"));
+    h5::write_dataset(render.get(), "object_poses", r.render_object_poses, {R, r.n_objects, 12}, in("m"));
+  }
+  {  // The scene's surfaces, self-contained: their descriptions (SI) and a mesh's vertices and triangles.
+    const h5::Handle objects = h5::create_group(root, "objects");
+    std::size_t i = 0;
+    for (const SceneObject& o : c.objects) {
+      if (!o.shape) continue;
+      const h5::Handle g = h5::create_group(objects.get(), std::to_string(i++));
+      nlohmann::json d = shape_to_json(*o.shape);
+      d["frame"] = std::string(to_string(o.frame));
+      h5::write_string_attribute(g.get(), "description", d.dump());
+      if (const auto* mesh = dynamic_cast<const Mesh*>(o.shape.get())) {
+        std::vector<double> v;
+        std::vector<int> t;
+        for (const auto& p : mesh->vertices()) v.insert(v.end(), {p.x(), p.y(), p.z()});
+        for (const auto& f : mesh->triangles()) t.insert(t.end(), {f[0], f[1], f[2]});
+        h5::write_dataset(g.get(), "vertices", v, {mesh->vertices().size(), 3}, in("m"));
+        h5::write_dataset(g.get(), "triangles", t, {mesh->triangles().size(), 3}, in("1"));
+      }
+    }
   }
   h5::close_file(file, path);
 }
