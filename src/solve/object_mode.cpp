@@ -137,7 +137,8 @@ ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeo
   // The force's direction is solved to the tolerance in units of E I_0 / L^2: a small force is polished with a
   // tolerance scaled by its size, so that its direction holds relative to its magnitude.
   const double f = std::hypot(a.state.force_x, std::hypot(a.state.force_y, a.state.force_z)) / sc.force;
-  if (a.status == Status::converged && f < 1.0 && f > 0.0) {
+  // (the residual bounds the direction's error by about residual / f: polished only where that exceeds 1e-11)
+  if (a.status == Status::converged && f > 0.0 && a.lm.residual > 1e-11 * f) {
     SolveOptions tight = options;
     tight.tolerance = options.tolerance * std::max(f, 1e-4);
     ObjectAttempt b = a.tip ? attempt_tip(w, sc, g, law, a.lm.u, tight, a.piece)
@@ -204,8 +205,10 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
     tip = is_tip(w, warm->arc_length);
     u0 = tip ? Eigen::Vector3d(warm->force_x, warm->force_y, warm->force_z) / sc.force
              : Eigen::Vector3d(warm->force_y / sc.force, warm->force_z / sc.force, warm->arc_length / sc.length);
-    const ObjectContactPoint p = contact_point_at(w, g, *warm, tip, 1.0);
-    sigma = core_side(g, p.c_B, p.t_B);
+    if (g.core_B) {  // the side of the line core the warm contact is on
+      const ObjectContactPoint p = contact_point_at(w, g, *warm, tip, 1.0);
+      sigma = core_side(g, p.c_B, p.t_B);
+    }
   } else {
     // Pressed against the object: the rest whisker reaches into it. Seen along a line core (an infinite cylinder)
     // the whisker may also have swept past it entirely; as in edge mode, a line within reach is solved and the
