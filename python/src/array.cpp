@@ -46,6 +46,11 @@ void bind_array(py::module_& m) {
           },
           py::arg("dir"), py::arg("csv") = false);
 
+  m.def(
+      "_check_array_config",
+      [](const std::string& text) { (void)io::array_config_from_json(parse_config(text), std::filesystem::current_path()); },
+      "Reads an array configuration as simulate_array would, without simulating: ValueError naming the field.");
+
   m.def("default_array_config_json", [] { return io::default_array_config_json().dump(); },
         "The built-in configuration of `vibrissa array` as JSON text (= --print-default-config).");
 

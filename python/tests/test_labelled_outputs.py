@@ -52,6 +52,9 @@ def outputs(cli, tmp_path_factory):
     for ext in ("h5", "csv"):
         run(cli, "reconstruct", "--top", d / "top.csv", "--front", d / "front.csv", "--calibration", d / "cams.json",
             "-o", d / f"recon.{ext}")
+    (d / "sweep.json").write_text(json.dumps({"kind": "array", "base": "array.json",
+                                              "grid": {"whisking.amplitude_deg": [20, 30]}}))
+    run(cli, "sweep", d / "sweep.json", "--out", d / "sweep", "--scheduler", "serial")
     return d
 
 
@@ -77,6 +80,8 @@ HDF5_FILES = {  # file, group: dimensions expected of some variables
                              "theta": ["whisker", "time"], "side": ["whisker"]},
     ("array/array.h5", "render"): {"deflected": ["frame", "whisker", "node", "component"],
                                    "edges": ["frame", "edge", "end", "component"]},
+    ("sweep/sweep.nc", ""): {"FT": ["whisking.amplitude_deg", "pitch", "whisker", "time"],
+                             "force_W": ["whisking.amplitude_deg", "pitch", "whisker", "time", "component"]},
 }
 
 
@@ -131,7 +136,7 @@ def test_renamed_direction_columns_still_answer_in_degrees_with_a_warning():
 def hdf5_units(path):
     found = {}
     with h5py.File(path, "r") as f:
-        f.visititems(lambda name, obj: found.setdefault(name, obj.attrs["units"])
+        f.visititems(lambda name, obj: found.setdefault(name, obj.attrs.get("units", "(none)"))
                      if isinstance(obj, h5py.Dataset) else None)
     return found
 
@@ -147,8 +152,11 @@ def numbers(rows, column):
 
 
 def test_every_output_follows_one_unit_convention(outputs):
-    for name in ("trial.h5", "recon.h5", "results/frames.h5", "array/array.h5"):
+    for name in ("trial.h5", "recon.h5", "results/frames.h5", "array/array.h5", "sweep/sweep.nc"):
         for dataset, units in hdf5_units(outputs / name).items():
+            if dataset == "whisking.amplitude_deg":  # a swept input: named and valued as in the input
+                assert units == "deg"
+                continue
             assert units in SI_UNITS, f"{name}: {dataset} in {units}"
             assert not UNIT_SUFFIX.search(dataset), f"{name}: {dataset} names its unit"
     for name in ("trial.csv", "recon.csv", "results/frames.csv", "array/array.csv", "array/pitch_summary.csv"):
