@@ -6,6 +6,8 @@ import contextlib
 import json
 import logging
 import os
+import pathlib
+import re
 import signal
 import subprocess
 import sys
@@ -247,3 +249,23 @@ def test_bad_sweeps_are_refused_before_anything_runs(tmp_path):
         vibrissa.sweep("array", BASE, grid={"whisking.amplitude_deg": [10]}, variables=["FT", "nope"],
                        scheduler="serial")
     assert not list(tmp_path.iterdir())
+
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+PACKAGE_PARENT = str(pathlib.Path(vibrissa.__file__).resolve().parents[1])
+
+
+def test_the_documented_sweep_and_the_scaling_script_run_as_written(tmp_path):
+    script = tmp_path / "peg_sweep.py"
+    script.write_text(re.findall(r"```python\n(.*?)```", (REPO / "docs" / "sweeps.md").read_text(), flags=re.S)[0])
+    env = dict(os.environ, PYTHONPATH=PACKAGE_PARENT)
+    done = subprocess.run([sys.executable, str(script)], cwd=tmp_path, env=env, capture_output=True, text=True,
+                          timeout=180)
+    assert done.returncode == 0, done.stderr
+    with xr.open_dataset(tmp_path / "peg_sweep" / "sweep.nc") as found:
+        assert dict(found.sizes)["objects.0.point_mm.0"] == 3 and "MB" in found
+    done = subprocess.run([sys.executable, str(REPO / "examples" / "sweep_scaling.py"), "--runs", "8", "--frames", "20",
+                           "--workers", "2", "--variables", "FT", "MB", "--overhead-tasks", "6"],
+                          env=env, capture_output=True, text=True, timeout=180)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.count("bit-identical to serial: True") == 2 and "overhead per task" in done.stdout
