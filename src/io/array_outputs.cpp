@@ -1,6 +1,8 @@
 #include "vibrissa/io/array_outputs.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <future>
 #include <map>
@@ -28,7 +30,8 @@ void create_array_h5(const ArrayResult& r, const SimulationConfig& c, const std:
 
 // One row per (pitch, whisker, frame): pitch, whisker, frame, time, then every [pitch][whisker][frame] variable
 // of array.h5 under its name (vectors as name_x, name_y, name_z; codes by their names), in its SI units.
-void create_array_csv(const ArrayResult& r, const SimulationConfig& c, const std::string& path) {
+void create_array_csv(const ArrayResult& r, const SimulationConfig& c, const std::string& path,
+                      const std::filesystem::path& target) {
   const LabelledData data = array_data(r, c);
   struct Column {
     const LabelledVariable* variable;
@@ -46,7 +49,7 @@ void create_array_csv(const ArrayResult& r, const SimulationConfig& c, const std
     }
   }
   std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write '" + path + "'");
+  if (!f) throw std::runtime_error("cannot write '" + target.string() + "': " + std::strerror(errno));
   std::fprintf(f, "%s\n", header.c_str());
   std::string row;
   for (std::size_t p = 0; p < r.n_pitches; ++p)
@@ -71,7 +74,9 @@ void create_array_csv(const ArrayResult& r, const SimulationConfig& c, const std
         std::fputs(row.c_str(), f);
       }
   const bool failed = std::ferror(f) != 0;
-  if (std::fclose(f) != 0 || failed) throw std::runtime_error("cannot write '" + path + "' (disk full?)");
+  const int err = errno;
+  if (std::fclose(f) != 0 || failed)
+    throw std::runtime_error("cannot write '" + target.string() + "': " + std::strerror(failed ? err : errno));
 }
 
 // Reasons for the nulls of the summaries (io/nan_reasons.hpp), shared by summary.json and pitch_summary.csv.
@@ -189,28 +194,26 @@ LabelledData array_data(const ArrayResult& r, const SimulationConfig& c) {
 
 void write_array_outputs(const ArrayResult& result, const SimulationConfig& config, const nlohmann::json& config_json,
                          const std::filesystem::path& dir, const ArrayOutputOptions& options) {
-  std::filesystem::create_directories(dir);
-  // The serial tail after the parallel simulation, overlapped: array.h5 is written on a second thread (the
-  // only thread in HDF5, which Debian builds without thread safety) while this one writes the text outputs.
-  // All are renamed together once every one is written, array.h5 first, as when they were written in turn.
-  StagedFiles h5_files, files;
+  // One set (output_folder.hpp); the figures of an older run are not carried over.
+  OutputFolder folder(dir, kArrayFigures);
+  // The serial tail after the parallel simulation, overlapped: array.h5 is written on a second thread while
+  // this one writes the text outputs; all are published together once every one is written.
   std::future<void> h5 = std::async(std::launch::async, [&] {
-    h5_files.stage(dir / "array.h5", [&](const std::string& tmp) { create_array_h5(result, config, tmp); });
+    folder.stage("array.h5", [&](const std::string& tmp) { create_array_h5(result, config, tmp); });
   });
   try {
     if (options.csv)
-      files.stage(dir / "array.csv", [&](const std::string& tmp) { create_array_csv(result, config, tmp); });
-    files.stage_text(dir / "pitch_summary.csv", [&](std::ostream& out) { print_pitch_summary_csv(result, out); });
-    stage_json_file(files, dir / "config.json", config_json);
-    stage_json_file(files, dir / "summary.json", array_summary_json(result, config));
+      folder.stage("array.csv",
+                   [&](const std::string& tmp) { create_array_csv(result, config, tmp, dir / "array.csv"); });
+    folder.stage_text("pitch_summary.csv", [&](std::ostream& out) { print_pitch_summary_csv(result, out); });
+    stage_json_file(folder, "config.json", config_json);
+    stage_json_file(folder, "summary.json", array_summary_json(result, config));
   } catch (...) {
-    h5.wait();  // h5_files must outlive its writer
+    h5.wait();  // the folder must outlive its writer
     throw;
   }
   h5.get();  // rethrows the HDF5 writer's exception
-  remove_figures(dir, kArrayFigures);
-  h5_files.commit();
-  files.commit();
+  folder.commit();
 }
 
 std::vector<std::size_t> h5_dataset_shape(const std::filesystem::path& path, const std::string& name) {

@@ -1,10 +1,14 @@
 #include "h5_file.hpp"
 
+#include <fcntl.h>
 #include <hdf5_hl.h>
+#include <unistd.h>
 
+#include "output_target.hpp"
 #include "vibrissa/core/limits.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <stdexcept>
 
@@ -35,10 +39,21 @@ QuietErrors::QuietErrors() {
   H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
-QuietErrors::~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+QuietErrors::~QuietErrors() {
+  // An error left on this thread's stack makes thread-safe libhdf5 1.10 loop at exit ("HDF5: infinite loop
+  // closing library") when the error happened on a thread other than the main one.
+  H5Eclear2(H5E_DEFAULT);
+  H5Eset_auto2(H5E_DEFAULT, func_, data_);
+}
 
 Handle create_file(const std::string& path) {
-  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  // In memory (the core driver without a backing store): libhdf5 never writes to the disk, so a full disk
+  // or a file size limit is met by close_file's own write, not inside libhdf5, whose clean-up after a failed
+  // write crashes at exit (1.10.8: SIGSEGV in H5F__close_cb).
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  if (!fapl.valid() || H5Pset_fapl_core(fapl.get(), 4u << 20, false) < 0)
+    throw std::runtime_error(path + ": cannot create the HDF5 file");
+  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
   if (!f.valid()) throw std::runtime_error(path + ": cannot create the HDF5 file");
   return f;
 }
@@ -51,7 +66,25 @@ Handle open_file_read(const std::string& path) {
 }
 
 void close_file(Handle& file, const std::string& path) {
-  if (H5Fclose(file.release()) < 0) throw std::runtime_error(path + ": cannot finish the HDF5 file (disk full?)");
+  const ssize_t name_size = H5Fget_name(file.get(), nullptr, 0);
+  std::string name(name_size > 0 ? static_cast<std::size_t>(name_size) : 0, '\0');
+  const bool flushed = H5Fflush(file.get(), H5F_SCOPE_GLOBAL) >= 0;  // the metadata cache into the image
+  const ssize_t size = flushed ? H5Fget_file_image(file.get(), nullptr, 0) : -1;
+  std::vector<char> image(size > 0 ? static_cast<std::size_t>(size) : 0);
+  if (name_size <= 0 || H5Fget_name(file.get(), name.data(), name.size() + 1) < 0 || size <= 0 ||
+      H5Fget_file_image(file.get(), image.data(), image.size()) != size)
+    throw std::runtime_error(path + ": cannot finish the HDF5 file");
+  file.reset();
+  const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666);
+  if (fd < 0) throw std::runtime_error("cannot write " + quoted_path(path) + ": " + std::strerror(errno));
+  try {
+    write_all(fd, image.data(), image.size(), path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  if (::close(fd) != 0 && errno != EINTR)
+    throw std::runtime_error("cannot write " + quoted_path(path) + ": " + std::strerror(errno));
 }
 
 Handle create_group(hid_t parent, const std::string& name) {

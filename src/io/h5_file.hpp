@@ -50,10 +50,11 @@ class QuietErrors {
   void* data_ = nullptr;
 };
 
+/// A new HDF5 file for `path`, built in memory: nothing is written until close_file.
 Handle create_file(const std::string& path);
 Handle open_file_read(const std::string& path);
-/// Closes a file being written and reports failure (a full disk shows here); `path` names it in the error.
-/// Close every group of the file first.
+/// Writes a file made by create_file to its path and closes it; reports failure (a full disk shows here) with
+/// the system's reason; `path` names it in the error. Close every group and dataset of the file first.
 void close_file(Handle& file, const std::string& path);
 Handle create_group(hid_t parent, const std::string& name);
 

@@ -1,6 +1,8 @@
 # Sources of the io layer: every file the tools read or write (case_json.cpp is listed in case_sources.cmake).
 target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/atomic_file.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/output_target.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/output_folder.cpp
   ${CMAKE_CURRENT_LIST_DIR}/temporary_files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/json_file.cpp
   ${CMAKE_CURRENT_LIST_DIR}/json_input.cpp

@@ -9,7 +9,7 @@
 #include "csv_cells.hpp"
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/trial/trial_run.hpp"
-#include "vibrissa/io/atomic_file.hpp"
+#include "vibrissa/io/output_folder.hpp"
 #include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/json_file.hpp"
 #include "vibrissa/io/nan_reasons.hpp"
@@ -318,13 +318,11 @@ LabelledData trial_results_data(const ResultTable& table) {
 }
 
 void write_trial_outputs(const ResultTable& table, const nlohmann::json& summary, const std::filesystem::path& dir) {
-  std::filesystem::create_directories(dir);
-  StagedFiles files;
-  files.stage_text(dir / "frames.csv", [&](std::ostream& out) { print_result_table_csv(table, out); });
-  files.stage(dir / "frames.h5", [&](const std::string& tmp) { create_result_table_h5(table, tmp); });
-  stage_json_file(files, dir / "summary.json", summary);  // last: its presence marks a finished run
-  remove_figures(dir, kTrialFigures);
-  files.commit();
+  OutputFolder folder(dir, kTrialFigures);  // one set: frames.csv, frames.h5, summary.json (figures/ removed)
+  folder.stage_text("frames.csv", [&](std::ostream& out) { print_result_table_csv(table, out); });
+  folder.stage("frames.h5", [&](const std::string& tmp) { create_result_table_h5(table, tmp); });
+  stage_json_file(folder, "summary.json", summary);
+  folder.commit();
 }
 
 nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
