@@ -1,6 +1,7 @@
 #include "h5_file.hpp"
 
 #include <fcntl.h>
+#include <hdf5_hl.h>
 #include <unistd.h>
 
 #include "output_target.hpp"
@@ -160,40 +161,47 @@ void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t memory
     throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
   write_string_attribute(d.get(), "units", options.units);
   if (!options.codes.empty()) write_string_attribute(d.get(), "codes", options.codes);
+  if (!options.long_name.empty()) write_string_attribute(d.get(), "long_name", options.long_name);
+}
+
+// Variable-length UTF-8 strings (netCDF-4's NC_STRING).
+Handle utf8_string_type() {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (!type.valid() || H5Tset_size(type.get(), H5T_VARIABLE) < 0 || H5Tset_cset(type.get(), H5T_CSET_UTF8) < 0)
+    throw std::runtime_error("cannot create the HDF5 string type");
+  return type;
 }
 
 }  // namespace
 
-void write_dataset(hid_t loc, const std::string& name, const std::vector<double>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const double> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data.data(), dims, options);
 }
-void write_dataset(hid_t loc, const std::string& name, const std::vector<float>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const float> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, data.data(), dims, options);
 }
-void write_dataset(hid_t loc, const std::string& name, const std::vector<int>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const int> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_STD_I32LE, H5T_NATIVE_INT, data.data(), dims, options);
 }
-void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int16_t>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const std::int16_t> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_STD_I16LE, H5T_NATIVE_INT16, data.data(), dims, options);
 }
-void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int8_t>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const std::int8_t> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_STD_I8LE, H5T_NATIVE_INT8, data.data(), dims, options);
 }
 
-void write_fixed_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data) {
-  std::size_t width = 1;
-  for (const auto& s : data) width = std::max(width, s.size() + 1);
-  std::vector<char> buffer(width * std::max<std::size_t>(data.size(), 1), '\0');
-  for (std::size_t i = 0; i < data.size(); ++i) std::memcpy(&buffer[i * width], data[i].data(), data[i].size());
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.get(), width);
-  H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
-  write_raw(loc, name, type.get(), type.get(), buffer.data(), {static_cast<hsize_t>(data.size())}, {"text"});
+void write_strings(hid_t loc, const std::string& name, std::span<const std::string> data,
+                   const DatasetOptions& options) {
+  std::vector<const char*> pointers;
+  pointers.reserve(data.size());
+  for (const std::string& text : data) pointers.push_back(text.c_str());
+  const Handle type = utf8_string_type();
+  write_raw(loc, name, type.get(), type.get(), pointers.data(), {static_cast<hsize_t>(data.size())}, options);
 }
 
 namespace {
@@ -321,12 +329,11 @@ std::optional<double> read_double_attribute(hid_t loc, const std::string& name, 
 }
 
 void write_string_attribute(hid_t loc, const std::string& name, const std::string& value) {
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.get(), value.size() + 1);
-  H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
+  const Handle type = utf8_string_type();
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   Handle a(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  if (!a.valid() || H5Awrite(a.get(), type.get(), value.c_str()) < 0)
+  const char* text = value.c_str();
+  if (!a.valid() || H5Awrite(a.get(), type.get(), &text) < 0)
     throw std::runtime_error("cannot write HDF5 attribute '" + name + "'");
 }
 
@@ -335,6 +342,20 @@ void write_double_attribute(hid_t loc, const std::string& name, double value) {
   Handle a(H5Acreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
   if (!a.valid() || H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &value) < 0)
     throw std::runtime_error("cannot write HDF5 attribute '" + name + "'");
+}
+
+void make_dimension_scale(hid_t loc, const std::string& name) {
+  Handle d(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid() || H5DSset_scale(d.get(), name.substr(name.rfind('/') + 1).c_str()) < 0)
+    throw std::runtime_error("cannot make HDF5 dataset '" + name + "' a dimension scale");
+}
+
+void attach_dimension_scale(hid_t loc, const std::string& name, unsigned index, hid_t scale_loc,
+                            const std::string& scale) {
+  Handle d(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  Handle s(H5Dopen2(scale_loc, scale.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid() || !s.valid() || H5DSattach_scale(d.get(), s.get(), index) < 0)
+    throw std::runtime_error("cannot attach dimension scale '" + scale + "' to HDF5 dataset '" + name + "'");
 }
 
 }  // namespace vibrissa::io::h5

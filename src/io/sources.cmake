@@ -10,6 +10,7 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/nan_reasons.cpp
   ${CMAKE_CURRENT_LIST_DIR}/figure_files.cpp
   ${CMAKE_CURRENT_LIST_DIR}/h5_file.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/labelled_h5.cpp
   ${CMAKE_CURRENT_LIST_DIR}/guarded_read.cpp
   ${CMAKE_CURRENT_LIST_DIR}/code_tables.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_arrays.cpp

@@ -7,4 +7,5 @@ set(VIBRISSA_TEST_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/array_outputs_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/input_hardening_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/nan_reasons_test.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/guarded_read_test.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/guarded_read_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/labelled_h5_test.cpp)
