@@ -11,5 +11,6 @@ void register_synth(CLI::App& app);
 void register_array(CLI::App& app);
 void register_reconstruct(CLI::App& app);
 void register_calibrate(CLI::App& app);
+void register_sweep(CLI::App& app);
 
 }  // namespace vibrissa::cli

@@ -1,6 +1,10 @@
 #include "run_python.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <future>
 #include <iostream>
@@ -23,18 +27,27 @@ std::string quote(const std::string& s) {
   return out;
 }
 
-std::filesystem::path figures_dir() {
-  namespace fs = std::filesystem;
-  if (const char* env_dir = std::getenv("VIBRISSA_FIGURES_DIR")) return env_dir;
-  // Installed: <prefix>/libexec/vibrissa/vibrissa-full (the full tool, apps/CMakeLists.txt) and
-  // <prefix>/share/vibrissa/figures (cmake --install, the .deb).
+// The prefix of an installed full tool, <prefix>/libexec/vibrissa/vibrissa-full (apps/CMakeLists.txt); the
+// build tree has the same layout under <build>.
+std::filesystem::path install_prefix() {
   std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path installed = exe.parent_path().parent_path().parent_path() / VIBRISSA_FIGURES_INSTALL_DIR;
-    if (fs::exists(installed / "trial_figures.py", ec)) return installed;
-  }
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path() : exe.parent_path().parent_path().parent_path();
+}
+
+std::filesystem::path figures_dir() {
+  if (const char* env_dir = std::getenv("VIBRISSA_FIGURES_DIR")) return env_dir;
+  // Installed: <prefix>/share/vibrissa/figures (cmake --install, the .deb).
+  std::error_code ec;
+  const std::filesystem::path installed = install_prefix() / VIBRISSA_FIGURES_INSTALL_DIR;
+  if (std::filesystem::exists(installed / "trial_figures.py", ec)) return installed;
   return VIBRISSA_FIGURES_SOURCE_DIR;  // the build tree: the scripts in the source tree
+}
+
+// $VIBRISSA_PYTHON (the pip-installed command sets it to its own interpreter), else the one found at configure time.
+std::string python_interpreter() {
+  const char* env = std::getenv("VIBRISSA_PYTHON");
+  return env && *env ? env : VIBRISSA_PYTHON;
 }
 
 }  // namespace
@@ -46,7 +59,7 @@ int run_figure_script(const std::string& script, const std::vector<std::string>&
     return 2;
   }
   std::ostringstream cmd;
-  cmd << quote(VIBRISSA_PYTHON) << ' ' << quote(path.string());
+  cmd << quote(python_interpreter()) << ' ' << quote(path.string());
   for (const auto& a : args) cmd << ' ' << quote(a);
   const int rc = std::system(cmd.str().c_str());
   if (rc != 0) std::cerr << "vibrissa: warning: figure script " << script << " failed (exit " << rc << ")\n";
@@ -58,6 +71,30 @@ void run_figure_scripts(const std::vector<FigureScript>& scripts) {
   for (const FigureScript& f : scripts)
     running.push_back(std::async(std::launch::async, [&f] { return run_figure_script(f.script, f.args); }));
   for (auto& r : running) r.get();
+}
+
+int exec_python_module(const std::string& module, const std::vector<std::string>& args) {
+  namespace fs = std::filesystem;
+  // The package: installed beside this tool (<prefix>/<python install dir>/vibrissa), else the build tree's.
+  // A package the interpreter finds by itself (the .deb's dist-packages) also works with neither.
+  std::error_code ec;
+  fs::path root = install_prefix() / VIBRISSA_PYTHON_PACKAGE_INSTALL_DIR;
+  if (!fs::exists(root / "vibrissa" / "__init__.py", ec)) root = VIBRISSA_PYTHON_PACKAGE_BUILD_DIR;
+  if (fs::exists(root / "vibrissa" / "__init__.py", ec)) {
+    std::string path = root.string();
+    if (const char* old = std::getenv("PYTHONPATH"); old && *old) path.append(":").append(old);
+    ::setenv("PYTHONPATH", path.c_str(), 1);
+  }
+  const std::string python = python_interpreter();
+  std::vector<std::string> words{python, "-m", module};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  std::cout.flush();
+  ::execvp(python.c_str(), argv.data());  // Python takes over this process: Ctrl-C and exit status are its own
+  std::cerr << "vibrissa: error: cannot run " << python << " -m " << module << ": " << std::strerror(errno) << "\n";
+  return 1;
 }
 
 }  // namespace vibrissa::cli

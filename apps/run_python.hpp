@@ -1,7 +1,8 @@
 #pragma once
 // Runs one of the plotting scripts in figures/ with the Python interpreter found at configure time
-// (Debian's /usr/bin/python3 with numpy, matplotlib and h5py). Figures are optional: a missing interpreter
-// or package is reported, not fatal.
+// (Debian's /usr/bin/python3 with numpy, matplotlib and h5py), or $VIBRISSA_PYTHON when set. Figures are
+// optional: a missing interpreter or package is reported, not fatal. And hands a subcommand implemented in
+// the Python package (`vibrissa sweep`) to that interpreter.
 #include <string>
 #include <vector>
 
@@ -16,5 +17,9 @@ struct FigureScript {
 };
 /// Runs several scripts at once (each is its own Python process and writes its own file), as run_figure_script.
 void run_figure_scripts(const std::vector<FigureScript>& scripts);
+
+/// Replaces this process by `python -m <module> <args...>` with the vibrissa package of this installation (or
+/// build tree) on PYTHONPATH; returns 1 (after a message) only if the interpreter cannot be started.
+int exec_python_module(const std::string& module, const std::vector<std::string>& args);
 
 }  // namespace vibrissa::cli

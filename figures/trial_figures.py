@@ -3,8 +3,8 @@
 
 usage: trial_figures.py FRAMES.h5 SUMMARY.json OUTDIR [--window START_S,END_S | --whisk N] [--dpi DPI]
 
-Reads the per-frame table written by `vibrissa trial` (group /frames) and its summary.json. Fit lines and
-their numbers are those of summary.json (never refitted here). Time series (Figs. 2b-d, 3a, 3b) show a time
+Reads the per-frame table written by `vibrissa trial` (frames.h5, one dataset per column) and its
+summary.json. Fit lines and their numbers are those of summary.json (never refitted here). Time series (Figs. 2b-d, 3a, 3b) show a time
 window: --window START_S,END_S (seconds, trial clock), --whisk N (contact period N, from 1), or by default the
 whole trial if it lasts at most OVERVIEW_MAX_S, else WINDOW_S from the first contact. fig3b_per_whisk.png
 overlays every whisk of the trial, aligned at contact onset. F_D and M_D are unwrapped within each whisk.
@@ -27,17 +27,16 @@ SHAPE_ROWS = (("shape_error", "mm", "mean shape error"), ("height", "mm", "conta
               ("s_applied", "mm", "$s_{applied}$"))
 WORLD_ROWS = (("Fx_world", "mN", "$F_x$"), ("Fy_world", "mN", "$F_y$"), ("Fz_world", "mN", "$F_z$"),
               ("Mx_world", "µN·m", "$M_x$"), ("My_world", "µN·m", "$M_y$"), ("Mz_world", "µN·m", "$M_z$"))
-WHISKER_ROWS = (("Fx_B", "mN", "$F_x$"), ("FT", "mN", "$F_T$"), ("FD_deg", "deg", "$F_D$"),
-                ("Mx_B", "µN·m", "$M_x$"), ("MB", "µN·m", "$M_B$"), ("MD_deg", "deg", "$M_D$"))
-OVERLAY_ROWS = (("FT", "mN", "$F_T$"), ("MB", "µN·m", "$M_B$"), ("FD_deg", "deg", "$F_D$"),
-                ("MD_deg", "deg", "$M_D$"))
-ANGLES = ("FD_deg", "MD_deg")  # already in degrees in frames.h5
+WHISKER_ROWS = (("Fx_B", "mN", "$F_x$"), ("FT", "mN", "$F_T$"), ("FD", "deg", "$F_D$"),
+                ("Mx_B", "µN·m", "$M_x$"), ("MB", "µN·m", "$M_B$"), ("MD", "deg", "$M_D$"))
+OVERLAY_ROWS = (("FT", "mN", "$F_T$"), ("MB", "µN·m", "$M_B$"), ("FD", "deg", "$F_D$"),
+                ("MD", "deg", "$M_D$"))
+ANGLES = ("FD", "MD")  # [rad] in frames.h5, drawn in degrees
 
 
 def load(path):
     with h5py.File(path, "r") as f:
-        g = f["frames"]
-        return {k: g[k][()] for k in g.keys()}
+        return {k: f[k][()] for k in f.keys()}
 
 
 def present_modes(d):
@@ -52,8 +51,8 @@ def signal(d, modes, mode, name, unit):
         return v * style.SCALE[unit]
     ref = None
     if mode is not modes[0]:
-        ref = style.unwrap_deg(d[modes[0]["prefix"] + name], d["period"])
-    return style.unwrap_deg(v, d["period"], reference=ref)
+        ref = style.unwrap_deg(np.degrees(d[modes[0]["prefix"] + name]), d["period"])
+    return style.unwrap_deg(np.degrees(v), d["period"], reference=ref)
 
 
 # --- time windows ---------------------------------------------------------------------------------------

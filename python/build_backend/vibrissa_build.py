@@ -5,9 +5,12 @@ its build requirements (setuptools, scikit-build, ...) from an index; vibrissa m
 (`pip install .` on a machine that reaches only Debian's archive), so the backend needs nothing but Python
 and the Debian packages that scripts/setup-debian.sh installs (CMake, a compiler, pybind11, HDF5, matio).
 
-build_wheel configures the project with the interpreter that runs the build, builds only the extension
-module, and packs the importable package that CMake assembles in <build>/python/vibrissa (pure-Python layer,
-type stubs, figure scripts, the compiled `_vibrissa`) into a wheel. Environment:
+build_wheel configures the project with the interpreter that runs the build, builds the extension module and
+the command line, and packs the importable package that CMake assembles in <build>/python/vibrissa (pure-Python
+layer, type stubs, figure scripts, the compiled `_vibrissa`) with the CLI's two executables
+(vibrissa/bin/vibrissa and vibrissa/libexec/vibrissa/vibrissa-full, the build tree's layout) into a wheel whose
+console script `vibrissa` runs them (vibrissa._cli), as does `python -m vibrissa`. It builds with every CPU
+(ninja; ccache when installed) and prints each step; pip shows the steps with `pip install -v`. Environment:
 VIBRISSA_BUILD_DIR (reuse a build directory; default: a fresh temporary one), VIBRISSA_BUILD_JOBS (default:
 the number of CPUs), VIBRISSA_CMAKE_ARGS (extra configure arguments, split on spaces).
 """
@@ -59,33 +62,58 @@ def _metadata() -> str:
         "Provides-Extra: plots",
         "Requires-Dist: matplotlib; extra == 'plots'",
         "Requires-Dist: h5py; extra == 'plots'",
+        "Provides-Extra: sweeps",
+        "Requires-Dist: distributed; extra == 'sweeps'",
+        "Requires-Dist: xarray; extra == 'sweeps'",
+        "Requires-Dist: h5netcdf; extra == 'sweeps'",
         "",
-        "The C++ engine of vibrissa with NumPy in and out; see docs/python.md.",
+        "The C++ engine of vibrissa with NumPy in and out, and its `vibrissa` command; see docs/python.md.",
         "",
     ])
 
 
+# The console script: the same command line as the CMake build's (vibrissa._cli).
+ENTRY_POINTS = "[console_scripts]\nvibrissa = vibrissa._cli:main\n"
+# The CLI's executables, from the build tree into the package, keeping their relative layout (bin/vibrissa
+# hands the file commands to ../libexec/vibrissa/vibrissa-full).
+EXECUTABLES = ("bin/vibrissa", "libexec/vibrissa/vibrissa-full")
+
+
+def _say(message: str) -> None:
+    print(f"vibrissa build backend: {message}", flush=True)
+
+
 def _run(command: list[str]) -> None:
-    print("vibrissa build backend:", " ".join(command), flush=True)
+    _say(" ".join(command))
     subprocess.run(command, check=True, cwd=ROOT)
 
 
 def _build_package() -> pathlib.Path:
-    """Configures and builds the extension; returns the assembled package directory."""
+    """Configures and builds the extension and the CLI; returns the build directory."""
     build = pathlib.Path(os.environ.get("VIBRISSA_BUILD_DIR") or tempfile.mkdtemp(prefix="vibrissa-wheel-"))
     configure = ["cmake", "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
                  "-DVIBRISSA_BUILD_TESTS=OFF", "-DVIBRISSA_BUILD_BENCHMARKS=OFF", "-DVIBRISSA_BUILD_PYTHON=ON",
                  f"-DPython3_EXECUTABLE={sys.executable}"]
-    if shutil.which("ninja") and not (build / "CMakeCache.txt").exists():
+    fresh = not (build / "CMakeCache.txt").exists()
+    if shutil.which("ninja") and fresh:
         configure += ["-G", "Ninja"]
+    if shutil.which("ccache") and fresh:
+        configure += ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"]
     configure += os.environ.get("VIBRISSA_CMAKE_ARGS", "").split()
+    _say(f"configuring the C++ project in {build}")
     _run(configure)
     jobs = os.environ.get("VIBRISSA_BUILD_JOBS") or str(os.cpu_count() or 1)
-    _run(["cmake", "--build", str(build), "--target", "_vibrissa", "--parallel", jobs])
+    _say(f"building the library, the Python extension and the command line with {jobs} parallel jobs "
+         "(a fresh build takes minutes)")
+    _run(["cmake", "--build", str(build), "--parallel", jobs,
+          "--target", "_vibrissa", "vibrissa_python_files", "vibrissa_cli", "vibrissa_cli_full"])
     package = build / "python" / NAME
     if not any(package.glob("_vibrissa*.so")):
         raise RuntimeError(f"vibrissa build backend: no extension module in {package}")
-    return package
+    for executable in EXECUTABLES:
+        if not (build / executable).is_file():
+            raise RuntimeError(f"vibrissa build backend: no {build / executable}")
+    return build
 
 
 def _record_line(arcname: str, data: bytes) -> str:
@@ -97,6 +125,7 @@ def _dist_info(directory: pathlib.Path) -> str:
     info = directory / f"{NAME}-{_version()}.dist-info"
     info.mkdir(parents=True, exist_ok=True)
     (info / "METADATA").write_text(_metadata())
+    (info / "entry_points.txt").write_text(ENTRY_POINTS)
     (info / "WHEEL").write_text(f"Wheel-Version: 1.0\nGenerator: vibrissa_build\nRoot-Is-Purelib: false\n"
                                 f"Tag: {_tag()}\n")
     return info.name
@@ -116,17 +145,28 @@ def prepare_metadata_for_build_wheel(metadata_directory, config_settings=None):
     return _dist_info(pathlib.Path(metadata_directory))
 
 
+def _add(wheel: zipfile.ZipFile, records: list, arcname: str, file: pathlib.Path) -> None:
+    """Adds `file` as `arcname`, keeping its permission bits (pip installs executables as executables)."""
+    info = zipfile.ZipInfo(arcname, date_time=(1980, 1, 1, 0, 0, 0))
+    info.compress_type = zipfile.ZIP_DEFLATED
+    info.external_attr = (file.stat().st_mode & 0o777 | 0o100000) << 16
+    data = file.read_bytes()
+    wheel.writestr(info, data)
+    records.append(_record_line(arcname, data))
+
+
 def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
-    package = _build_package()
+    build = _build_package()
+    package = build / "python" / NAME
     name = f"{NAME}-{_version()}-{_tag()}.whl"
     path = pathlib.Path(wheel_directory) / name
+    _say(f"packing {name}")
     records = []
     with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED) as wheel:
         for file in sorted(p for p in package.rglob("*") if p.is_file() and "__pycache__" not in p.parts):
-            arcname = f"{NAME}/{file.relative_to(package).as_posix()}"
-            data = file.read_bytes()
-            wheel.writestr(arcname, data)
-            records.append(_record_line(arcname, data))
+            _add(wheel, records, f"{NAME}/{file.relative_to(package).as_posix()}", file)
+        for executable in EXECUTABLES:
+            _add(wheel, records, f"{NAME}/{executable}", build / executable)
         with tempfile.TemporaryDirectory() as scratch:
             info = _dist_info(pathlib.Path(scratch))
             for file in sorted((pathlib.Path(scratch) / info).iterdir()):

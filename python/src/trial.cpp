@@ -14,8 +14,10 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "interruptible.hpp"
+#include "labelled.hpp"
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/io/trial_outputs.hpp"
+#include "vibrissa/io/trial_results.hpp"
 #include "vibrissa/trial/synth_parameters.hpp"
 
 namespace vibrissa::python {
@@ -94,7 +96,7 @@ py::dict table_columns(const io::ResultTable& table) {
   py::dict out;
   for (const auto& c : table.numeric) out[py::str(c.name)] = to_array(c.values);
   py::module_ np = py::module_::import("numpy");
-  for (const auto& [name, values] : table.text) out[py::str(name)] = np.attr("array")(py::cast(values), "U");
+  for (const io::TextColumn& c : table.text) out[py::str(c.name)] = np.attr("array")(py::cast(c.values), "U");
   return out;
 }
 
@@ -256,6 +258,7 @@ void bind_trial(py::module_& m) {
 
   py::class_<io::TrialOutputs>(m, "_TrialOutputs")
       .def("columns", [](const io::TrialOutputs& o) { return table_columns(o.table); })
+      .def("labelled", [](const io::TrialOutputs& o) { return labelled_description(io::trial_results_data(o.table)); })
       .def("summary_json", [](const io::TrialOutputs& o) { return o.summary.dump(); })
       .def(
           "write",

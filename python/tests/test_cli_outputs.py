@@ -31,7 +31,8 @@ def snapshot(folder):
 
 
 def leftovers(folder):
-    return [p.name for p in folder.rglob(".tmp-*")]
+    """Temporaries left in the folder or beside it (an output folder is staged as a sibling `.tmp-*`)."""
+    return [p.name for p in folder.rglob(".tmp-*")] + [p.name for p in folder.parent.glob(".tmp-*")]
 
 
 def run(cli, *args):
@@ -53,7 +54,9 @@ def kill_while_writing(cli, args, pause_at, sig):
     else:
         proc.wait()
         pytest.fail("the run ended without reaching the test hook: " + "".join(lines))
-    assert f".tmp-{proc.pid}-{pause_at}" in lines[-1]
+    temporary = lines[-1].split("paused before renaming ")[1].split(" to ")[0]
+    # beside the target (`.tmp-<pid>-<name>`) or in the staged output folder (`.tmp-<pid>-<folder>/<name>`)
+    assert f".tmp-{proc.pid}-" in temporary and temporary.endswith(pause_at)
     proc.send_signal(sig)
     proc.stderr.read()
     return proc.wait()

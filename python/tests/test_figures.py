@@ -114,8 +114,8 @@ def test_unwrap_deg_removes_jumps_and_follows_a_reference():
 def test_direction_traces_have_no_wrap_jumps(figs, trial_data):
     d, _ = trial_data
     fig = figs["fig3b_whisker_signals.png"]
-    raw_jumps = max(np.nanmax(np.abs(np.diff(d[m["prefix"] + q]))) for m in trial_figures.present_modes(d)
-                    for q in trial_figures.ANGLES)
+    raw_jumps = max(np.nanmax(np.abs(np.diff(np.degrees(d[m["prefix"] + q]))))  # frames.h5: rad
+                    for m in trial_figures.present_modes(d) for q in trial_figures.ANGLES)
     assert raw_jumps > 180.0, "the test trial should wrap F_D or M_D somewhere; choose another seed"
     t = d["time"] * 1e3
     starts = {t[i] for i in np.flatnonzero(np.diff(d["period"]) != 0) + 1}

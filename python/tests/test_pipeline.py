@@ -104,7 +104,7 @@ def test_synth_and_trial_match_the_cli_bit_for_bit(cli, tmp_path, synthetic_tria
 
     run([cli, "trial", cli_trial, "--mu", "0.48", "--cutoff", "90", "--out", tmp_path / "cli_res", "--no-figures"])
     result = vibrissa.analyze_trial(str(cli_trial), mu=0.48, cutoff=90.0)
-    cli_columns = h5_datasets(tmp_path / "cli_res" / "frames.h5", "frames", decode_codes=True)
+    cli_columns = h5_datasets(tmp_path / "cli_res" / "frames.h5", decode_codes=True)
     assert_same_arrays(cli_columns, result.columns)
     cli_summary = json.loads((tmp_path / "cli_res" / "summary.json").read_text())
     assert without_wall_clock(result.summary) == without_wall_clock(cli_summary)
@@ -114,7 +114,7 @@ def test_synth_and_trial_match_the_cli_bit_for_bit(cli, tmp_path, synthetic_tria
     result.write(tmp_path / "py_res")
     for name in ("frames.csv",):
         assert (tmp_path / "py_res" / name).read_bytes() == (tmp_path / "cli_res" / name).read_bytes()
-    assert_same_arrays(cli_columns, h5_datasets(tmp_path / "py_res" / "frames.h5", "frames", decode_codes=True))
+    assert_same_arrays(cli_columns, h5_datasets(tmp_path / "py_res" / "frames.h5", decode_codes=True))
     py_summary = json.loads((tmp_path / "py_res" / "summary.json").read_text())
     assert without_wall_clock(py_summary) == without_wall_clock(cli_summary)
 

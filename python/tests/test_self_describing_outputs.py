@@ -60,8 +60,8 @@ def test_every_cli_hdf5_dataset_has_units(cli, tmp_path):
     names = assert_units_everywhere(out / "frames.h5")
     with h5py.File(out / "frames.h5", "r") as f, open(out / "frames.csv") as c:
         rows = list(csv.DictReader(c))
-        g = f["frames"]
-        assert text(g["edge_FD_deg"].attrs["units"]) == "deg" and text(g["edge_MB"].attrs["units"]) == "N m"
+        g = f
+        assert text(g["edge_FD"].attrs["units"]) == "rad" and text(g["edge_MB"].attrs["units"]) == "N m"
         status = g["edge_status"]
         assert status.dtype == np.int8 and text(status.attrs["units"]) == "code"
         table = code_table(status.attrs["codes"])
@@ -92,9 +92,9 @@ def test_every_cli_hdf5_dataset_has_units(cli, tmp_path):
     free_rows = [r for r in rows if r["state"] == "free"]
     contact_rows = [r for r in rows if r["state"] == "contact"]
     assert free_rows and contact_rows
-    for name in ("s_applied_mm", "contact_x_mm", "FD_deg", "MD_deg", "z_error_mm"):
+    for name in ("s_applied", "contact_point_W_x", "FD", "MD", "z_error"):
         assert all(r[name] == "" for r in free_rows) and all(r[name] != "" for r in contact_rows), name
-    assert all(float(r["FT_mN"]) == 0.0 for r in free_rows)
+    assert all(float(r["FT"]) == 0.0 for r in free_rows)
 
     write_views(tmp_path)
     subprocess.run([cli, "reconstruct", "--top", str(tmp_path / "top.csv"), "--front", str(tmp_path / "front.csv"),

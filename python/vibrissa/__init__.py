@@ -16,6 +16,8 @@ The compiled core (``vibrissa._vibrissa``) mirrors the C++ library one to one: :
   :func:`read_trial` / :meth:`Trial.write`, :func:`analyze_trial` (``vibrissa trial``) -> :class:`TrialResult`,
   :func:`simulate_array` (``vibrissa array``) -> :class:`ArrayResult`; bit-identical to the CLI,
   interruptible with Ctrl-C, with ``progress`` callbacks;
+* labelled results (``ArrayResult.to_xarray()``, ``TrialResult.to_xarray()``) and parameter sweeps on Dask
+  (:func:`sweep`: grids of array, trial or solve runs -> one xarray Dataset; docs/sweeps.md);
 * plotting helpers (:mod:`vibrissa.plot`, needs matplotlib).
 
 SI units throughout: m, N, N·m, Pa, rad. World-frame quantities unless the name says otherwise
@@ -76,6 +78,7 @@ from .batch import (  # noqa: F401
 )
 from .inverse import BaseWrenchBatch, solve_base_wrench_batch  # noqa: F401
 from .recon import reconstruct  # noqa: F401
+from .sweeps import sweep  # noqa: F401
 from .case import case_from_dict, load_case, make_whisker, solve_case_file  # noqa: F401
 from .pipeline import (  # noqa: F401
     ArrayResult,
@@ -101,5 +104,5 @@ __all__ = [
     "solve_force", "solve_force_batch", "solve_frictional_edge", "solve_frictional_edge_batch", "solve_point",
     "solve_point_batch", "status_from_string", "write_result",
     "BaseWrenchBatch", "BaseWrenchIdentifiability", "BaseWrenchResult", "BaseWrenchRoot", "solve_base_wrench",
-    "solve_base_wrench_batch", "reconstruct",
+    "solve_base_wrench_batch", "reconstruct", "sweep",
 ]

@@ -57,5 +57,6 @@ from .pipeline import read_trial as read_trial
 from .pipeline import simulate_array as simulate_array
 from .pipeline import synthesize_trial as synthesize_trial
 from .pipeline import synthesize_trial_defaults as synthesize_trial_defaults
+from .sweeps import sweep as sweep
 
 __all__: list[str]

@@ -14,9 +14,12 @@ import subprocess
 import sys
 import tempfile
 
+import warnings
+
 import numpy as np
 
 from . import _vibrissa
+from .labelled import to_dataset
 from ._vibrissa import Trial, read_trial  # noqa: F401
 
 __all__ = ["ArrayResult", "Trial", "TrialResult", "analyze_trial", "default_array_config", "read_trial",
@@ -70,10 +73,15 @@ class _NamedArrays:
         return sorted(set(super().__dir__()) | {k for k in self._arrays if k.isidentifier()})
 
 
+# Columns renamed in 0.1.x: the force and moment directions are in rad like every output (docs/formats.md, "Units").
+_DEGREE_COLUMNS = {f"{prefix}_{name}_deg": f"{prefix}_{name}" for prefix in ("cp", "edge", "fric")
+                   for name in ("FD", "MD")}
+
+
 class TrialResult(_NamedArrays):
     """The outputs of ``vibrissa trial``: per-frame arrays named as the columns of ``frames.h5``
     (``result.cp_FT``, ``result["mu"]``; status columns are string arrays), ``summary`` (the dict of
-    ``summary.json``), :meth:`to_dataframe`, :meth:`write` and :meth:`figures`."""
+    ``summary.json``), :meth:`to_dataframe`, :meth:`to_xarray`, :meth:`write` and :meth:`figures`."""
 
     def __init__(self, outputs, trial):
         self._outputs = outputs
@@ -83,6 +91,22 @@ class TrialResult(_NamedArrays):
         self.summary = json.loads(outputs.summary_json())
 
     _what = "column"
+
+    def __getattr__(self, name):
+        if name in _DEGREE_COLUMNS and _DEGREE_COLUMNS[name] in self.__dict__.get("_arrays", {}):
+            return self._degrees(name)
+        return super().__getattr__(name)
+
+    def __getitem__(self, name):
+        if name in _DEGREE_COLUMNS and name not in self._arrays:
+            return self._degrees(name)
+        return super().__getitem__(name)
+
+    def _degrees(self, name):
+        new = _DEGREE_COLUMNS[name]
+        warnings.warn(f"TrialResult column {name!r} is deprecated: use {new!r} (rad); vibrissa 0.2.0 removes it",
+                      DeprecationWarning, stacklevel=3)
+        return np.degrees(self._arrays[new])
 
     def __len__(self):
         return len(self.columns["time"])
@@ -98,6 +122,12 @@ class TrialResult(_NamedArrays):
         """The per-frame table as a pandas DataFrame (columns in frames.csv order; needs python3-pandas)."""
         import pandas as pd
         return pd.DataFrame(self.columns)
+
+    def to_xarray(self):
+        """The per-frame table as an ``xarray.Dataset`` over dimension ``time`` (its coordinate), every column
+        with ``units`` and ``long_name``; status columns as int8 codes with their ``codes`` table. Identical to
+        ``xarray.open_dataset`` of the ``frames.h5`` that :meth:`write` writes (needs python3-xarray)."""
+        return to_dataset(self._outputs.labelled())
 
     def write(self, directory):
         """Writes frames.csv, frames.h5 and summary.json into `directory` (created), exactly as
@@ -157,7 +187,8 @@ def default_array_config():
 class ArrayResult(_NamedArrays):
     """The outputs of ``vibrissa array``: the datasets of ``array.h5`` by name as NumPy arrays
     (``result.FT`` has shape (pitches, whiskers, frames); the render group as ``result["render/rest"]``),
-    ``summary`` (the dict of ``summary.json``), ``config`` (the configuration used) and :meth:`write`."""
+    ``summary`` (the dict of ``summary.json``), ``config`` (the configuration used), :meth:`to_xarray` and
+    :meth:`write`."""
 
     def __init__(self, run):
         self._run = run
@@ -173,6 +204,14 @@ class ArrayResult(_NamedArrays):
         p, w, f = self.datasets["state"].shape
         touching = int((self.datasets["state"] == 1).any(axis=2).sum())
         return f"ArrayResult(pitches={p}, whiskers={w}, frames={f}, touching={touching})"
+
+    def to_xarray(self, group=""):
+        """The results as an ``xarray.Dataset``: dimensions ``pitch``, ``whisker``, ``time``, ``component``
+        with their coordinates (head pitch [rad], whisker names, time [s], "x"/"y"/"z"), every variable with
+        ``units`` and ``long_name`` (code variables also ``codes``). ``group="render"`` gives the rendered
+        shapes (dimensions ``frame``, ``whisker``, ``node``, ``component``; ``edge``, ``end``). Identical to
+        ``xarray.open_dataset`` of the ``array.h5`` that :meth:`write` writes (needs python3-xarray)."""
+        return to_dataset(self._run.labelled(), group)
 
     def write(self, directory, csv=False):
         """Writes config.json, array.h5, pitch_summary.csv, summary.json (and array.csv with csv=True) into

@@ -1,5 +1,6 @@
 #include "vibrissa/core/checks.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -26,15 +27,58 @@ std::string format_value(const Eigen::Vector3d& v) {
   return out;
 }
 
-std::string quote_text(std::string_view text) {
-  const std::size_t n = std::min(text.size(), limits::max_quoted_chars);
+namespace {
+
+// Length of the well-formed UTF-8 sequence at text[i] (RFC 3629: no overlong forms, no surrogates, at most
+// U+10FFFF), or 0 if the bytes there are not one.
+std::size_t utf8_sequence(std::string_view text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char c = byte(i);
+  if (c < 0x80) return 1;
+  std::size_t n = 0;
+  unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+  if (c >= 0xC2 && c <= 0xDF) n = 2;
+  else if (c >= 0xE0 && c <= 0xEF) n = 3, lo = c == 0xE0 ? 0xA0 : 0x80, hi = c == 0xED ? 0x9F : 0xBF;
+  else if (c >= 0xF0 && c <= 0xF4) n = 4, lo = c == 0xF0 ? 0x90 : 0x80, hi = c == 0xF4 ? 0x8F : 0xBF;
+  else return 0;
+  if (i + n > text.size() || byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < n; ++k)
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
+  return n;
+}
+
+// printable_text of text[0, limit), cut before a character that would cross the limit.
+std::string printable_prefix(std::string_view text, std::size_t limit, std::size_t& used) {
   std::string out;
-  out.reserve(n + 32);
-  for (std::size_t i = 0; i < n; ++i) {
+  out.reserve(std::min(text.size(), limit) + 8);
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const std::size_t n = utf8_sequence(text, i);
+    if (i + std::max<std::size_t>(n, 1) > limit) break;
     const auto c = static_cast<unsigned char>(text[i]);
-    out.push_back(c < 0x20 || c == 0x7f ? '?' : text[i]);
+    if (n == 0 || (n == 1 && (c < 0x20 || c == 0x7f))) {
+      out.push_back('?');
+      ++i;
+    } else {
+      out.append(text.substr(i, n));
+      i += n;
+    }
   }
-  if (n < text.size()) {
+  used = i;
+  return out;
+}
+
+}  // namespace
+
+std::string printable_text(std::string_view text) {
+  std::size_t used = 0;
+  return printable_prefix(text, text.size(), used);
+}
+
+std::string quote_text(std::string_view text) {
+  std::size_t used = 0;
+  std::string out = printable_prefix(text, limits::max_quoted_chars, used);
+  if (used < text.size()) {
     out.append("... (");
     out.append(std::to_string(text.size()));
     out.append(" bytes)");

@@ -1,13 +1,17 @@
 #include "vibrissa/io/array_outputs.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <future>
+#include <map>
 #include <ostream>
 #include <stdexcept>
 
 #include "../array/array_util.hpp"  // the array layer's unit helpers
 #include "code_tables.hpp"
+#include "csv_cells.hpp"
 #include "h5_file.hpp"
 #include "vibrissa/array/sweep.hpp"
 #include "vibrissa/io/figure_files.hpp"
@@ -23,120 +27,58 @@ using namespace vibrissa::array;
 namespace {
 
 void create_array_h5(const ArrayResult& r, const SimulationConfig& c, const std::string& path) {
-  h5::QuietErrors quiet;
-  h5::Handle file = h5::create_file(path);
-  const hid_t root = file.get();
-  const hsize_t P = r.n_pitches, W = r.n_whiskers, F = r.n_frames;
-  const std::vector<hsize_t> pwf{P, W, F}, pwf3{P, W, F, 3}, wf{W, F};
-  // Every dataset is compressed when large (most frames hold zeros); `units` names its unit.
-  const auto in = [](const char* units) { return h5::DatasetOptions(units, true); };
-  h5::write_string_attribute(root, "layout", "[pitch][whisker][frame]");
-  h5::write_string_attribute(root, "morphology", c.morphology.source);
-  h5::write_string_attribute(root, "mode", std::string(to_string(c.mode)));
-  h5::write_double_attribute(root, "mu", c.mu);
-  h5::write_string_attribute(root, "slopes", std::string(to_string(c.whisking.slopes)));
-  // The code tables also stay root attributes, as files before the "codes" dataset attribute had them.
-  h5::write_string_attribute(root, "state_codes", contact_state_code_table());
-  h5::write_string_attribute(root, "solver_status_codes", status_code_table());
-  h5::write_dataset(root, "time", r.times, {F}, in("s"));
-  h5::write_dataset(root, "pitch", r.pitches, {P}, in("rad"));
-  h5::write_fixed_strings(root, "whisker", r.labels);
-  std::vector<std::int8_t> side, row, column;
-  for (const WhiskerSpec& s : c.morphology.whiskers) {
-    side.push_back(s.side == Side::right ? 1 : -1);
-    row.push_back(static_cast<std::int8_t>(s.row));
-    column.push_back(static_cast<std::int8_t>(s.column));
-  }
-  const auto coded = [](std::string table) { return h5::DatasetOptions("code", true, std::move(table)); };
-  h5::write_dataset(root, "side", side, {W}, coded("1 right, -1 left"));
-  h5::write_dataset(root, "row", row, {W}, coded("1 A, 2 B, 3 C, 4 D, 5 E"));
-  h5::write_dataset(root, "column", column, {W}, in("1"));
-  h5::write_dataset(root, "state", r.state, pwf, coded(contact_state_code_table()));
-  h5::write_dataset(root, "solver_status", r.solver_status, pwf, coded(status_code_table()));
-  h5::write_dataset(root, "edge_index", r.edge, pwf, in("1"));
-  h5::write_dataset(root, "s_applied", r.s_applied, pwf, in("m"));
-  h5::write_dataset(root, "contact_point_W", r.contact_W, pwf3, in("m"));
-  h5::write_dataset(root, "force_W", r.force_W, pwf3, in("N"));
-  h5::write_dataset(root, "moment_W", r.moment_W, pwf3, in("N m"));
-  h5::write_dataset(root, "force_B", r.force_B, pwf3, in("N"));
-  h5::write_dataset(root, "moment_B", r.moment_B, pwf3, in("N m"));
-  h5::write_dataset(root, "FT", r.FT, pwf, in("N"));
-  h5::write_dataset(root, "MB", r.MB, pwf, in("N m"));
-  h5::write_dataset(root, "FD", r.FD, pwf, in("rad"));
-  h5::write_dataset(root, "MD", r.MD, pwf, in("rad"));
-  h5::write_dataset(root, "normal_force", r.normal_force, pwf, in("N"));
-  h5::write_dataset(root, "edge_force", r.edge_force, pwf, in("N"));
-  h5::write_dataset(root, "z_edge", r.z_edge, pwf, in("m"));
-  h5::write_dataset(root, "z_error", r.z_error, pwf, in("m"));
-  h5::write_dataset(root, "base_W", r.base_W, pwf3, in("m"));
-  h5::write_dataset(root, "theta", r.theta, wf, in("rad"));
-  h5::write_dataset(root, "phi", r.phi, wf, in("rad"));
-  h5::write_dataset(root, "zeta", r.zeta, wf, in("rad"));
-  {
-    const h5::Handle render = h5::create_group(root, "render");
-    const hsize_t R = r.render_frames.size(), N = r.n_nodes;
-    h5::write_double_attribute(render.get(), "pitch_index", static_cast<double>(c.render_pitch));
-    h5::write_dataset(render.get(), "frame", r.render_frames, {R}, in("1"));
-    h5::write_dataset(render.get(), "rest", r.rest_shapes, {R, W, N, 3}, in("m"));
-    h5::write_dataset(render.get(), "deflected", r.deflected_shapes, {R, W, N, 3}, in("m"));
-    h5::write_dataset(render.get(), "edges", r.render_edges, {R, r.n_edges, 2, 3}, in("m"));
-    h5::write_dataset(render.get(), "object_poses", r.render_object_poses, {R, r.n_objects, 12}, in("m"));
-  }
-  {  // The scene's surfaces, self-contained: their descriptions (SI) and a mesh's vertices and triangles.
-    const h5::Handle objects = h5::create_group(root, "objects");
-    std::size_t i = 0;
-    for (const SceneObject& o : c.objects) {
-      if (!o.shape) continue;
-      const h5::Handle g = h5::create_group(objects.get(), std::to_string(i++));
-      nlohmann::json d = shape_to_json(*o.shape);
-      d["frame"] = std::string(to_string(o.frame));
-      h5::write_string_attribute(g.get(), "description", d.dump());
-      if (const auto* mesh = dynamic_cast<const Mesh*>(o.shape.get())) {
-        std::vector<double> v;
-        std::vector<int> t;
-        for (const auto& p : mesh->vertices()) v.insert(v.end(), {p.x(), p.y(), p.z()});
-        for (const auto& f : mesh->triangles()) t.insert(t.end(), {f[0], f[1], f[2]});
-        h5::write_dataset(g.get(), "vertices", v, {mesh->vertices().size(), 3}, in("m"));
-        h5::write_dataset(g.get(), "triangles", t, {mesh->triangles().size(), 3}, in("1"));
-      }
-    }
-  }
-  h5::close_file(file, path);
+  write_labelled_h5(array_data(r, c), path);
 }
 
-// One row per (pitch, whisker, frame); units in the column names.
-void create_array_csv(const ArrayResult& r, const std::string& path) {
+// One row per (pitch, whisker, frame): pitch, whisker, frame, time, then every [pitch][whisker][frame] variable
+// of array.h5 under its name (vectors as name_x, name_y, name_z; codes by their names), in its SI units.
+void create_array_csv(const ArrayResult& r, const SimulationConfig& c, const std::string& path,
+                      const std::filesystem::path& target) {
+  const LabelledData data = array_data(r, c);
+  struct Column {
+    const LabelledVariable* variable;
+    std::size_t width, component;
+    std::map<int, std::string> labels;  // code -> name of a code variable
+  };
+  std::vector<Column> columns;
+  std::string header = "pitch,whisker,frame,time";
+  for (const LabelledVariable& v : data.variables) {
+    if (v.dims.size() < 3 || v.dims[0] != "pitch" || v.dims[1] != "whisker" || v.dims[2] != "time") continue;
+    const std::size_t width = v.dims.size() == 4 ? 3 : 1;
+    for (std::size_t i = 0; i < width; ++i) {
+      columns.push_back({&v, width, i, code_labels(v.codes)});
+      header += "," + v.name + (width == 3 ? std::string("_") + "xyz"[i] : std::string());
+    }
+  }
   std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write '" + path + "'");
-  std::fprintf(f,
-               "pitch_deg,whisker,frame,time_s,state,edge,s_applied_mm,contact_x_mm,contact_y_mm,contact_z_mm,"
-               "Fx_W_mN,Fy_W_mN,Fz_W_mN,Mx_W_uNm,My_W_uNm,Mz_W_uNm,Fx_mN,Fy_mN,Fz_mN,Mx_uNm,My_uNm,Mz_uNm,"
-               "FT_mN,MB_uNm,FD_deg,MD_deg,FN_mN,z_error_mm\n");
+  if (!f) throw std::runtime_error("cannot write '" + target.string() + "': " + std::strerror(errno));
+  std::fprintf(f, "%s\n", header.c_str());
+  std::string row;
   for (std::size_t p = 0; p < r.n_pitches; ++p)
     for (std::size_t w = 0; w < r.n_whiskers; ++w)
       for (std::size_t fr = 0; fr < r.n_frames; ++fr) {
         const std::size_t k = r.index(p, w, fr);
-        const auto v = [&](const std::vector<double>& a, int i) { return a[3 * k + static_cast<std::size_t>(i)]; };
-        // ",value", or "," alone where the value does not exist (NaN).
-        const auto cell = [f](double x) {
-          if (std::isnan(x)) std::fputc(',', f);
-          else std::fprintf(f, ",%.9g", x);
-        };
-        std::fprintf(f, "%.6g,%s,%zu,%.9g,%s,%d", to_deg(r.pitches[p]), r.labels[w].c_str(), fr, r.times[fr],
-                     std::string(to_string(static_cast<ContactState>(r.state[k]))).c_str(), r.edge[k]);
-        cell(r.s_applied[k] * 1e3);
-        for (int i = 0; i < 3; ++i) cell(v(r.contact_W, i) * 1e3);
-        for (const auto* a : {&r.force_W, &r.moment_W, &r.force_B, &r.moment_B}) {
-          const double unit = (a == &r.force_W || a == &r.force_B) ? 1e3 : 1e6;
-          for (int i = 0; i < 3; ++i) cell(v(*a, i) * unit);
+        row = csv::cell(r.pitches[p]) + "," + r.labels[w] + "," + std::to_string(fr) + "," + csv::cell(r.times[fr]);
+        for (const Column& column : columns) {
+          row += ',';
+          std::visit(
+              [&](const auto& values) {
+                const auto x = values[k * column.width + column.component];
+                if constexpr (std::is_floating_point_v<std::decay_t<decltype(x)>>) {
+                  row += csv::cell(x);  // empty where the value does not exist (NaN)
+                } else if constexpr (std::is_integral_v<std::decay_t<decltype(x)>>) {
+                  row += column.labels.empty() ? std::to_string(x) : column.labels.at(static_cast<int>(x));
+                }
+              },
+              column.variable->values);
         }
-        for (double x : {r.FT[k] * 1e3, r.MB[k] * 1e6, to_deg(r.FD[k]), to_deg(r.MD[k]), r.normal_force[k] * 1e3,
-                         r.z_error[k] * 1e3})
-          cell(x);
-        std::fputc('\n', f);
+        row += '\n';
+        std::fputs(row.c_str(), f);
       }
   const bool failed = std::ferror(f) != 0;
-  if (std::fclose(f) != 0 || failed) throw std::runtime_error("cannot write '" + path + "' (disk full?)");
+  const int err = errno;
+  if (std::fclose(f) != 0 || failed)
+    throw std::runtime_error("cannot write '" + target.string() + "': " + std::strerror(failed ? err : errno));
 }
 
 // Reasons for the nulls of the summaries (io/nan_reasons.hpp), shared by summary.json and pitch_summary.csv.
@@ -146,43 +88,167 @@ constexpr const char* kPushedPastWithoutContact =
 
 // One row per pitch (the head-pitch sweep table); the last column gives the reason for each empty cell.
 void print_pitch_summary_csv(const ArrayResult& r, std::ostream& out) {
-  out << "pitch_deg,whiskers_touching,whiskers_pushed_past,contact_frames,first_onset_ms,peak_MB_uNm,"
-         "peak_MB_whisker,mean_peak_MB_uNm,mean_peak_FT_mN,max_abs_z_error_mm,nan_reasons\n";
+  out << "pitch,whiskers_touching,whiskers_pushed_past,contact_frames,first_onset,peak_MB,peak_MB_whisker,"
+         "mean_peak_MB,mean_peak_FT,max_abs_z_error,nan_reasons\n";
   for (const PitchSummary& s : summarize_pitches(r)) {
-    out << to_deg(s.pitch) << ',' << s.whiskers_touching << ',' << s.whiskers_pushed_past << ',' << s.contact_frames
-        << ',' << (s.whiskers_touching ? fmt(s.first_onset_time * 1e3) : std::string()) << ',' << s.peak_MB * 1e6
-        << ',' << s.peak_MB_whisker << ',' << s.mean_peak_MB * 1e6 << ',' << s.mean_peak_FT * 1e3 << ','
-        << s.max_abs_z_error * 1e3 << ','
-        << (s.whiskers_touching ? std::string() : std::string("\"first_onset_ms: ") + kNoOnsetAtPitch + "\"") << '\n';
+    out << csv::cell(s.pitch) << ',' << s.whiskers_touching << ',' << s.whiskers_pushed_past << ','
+        << s.contact_frames << ',' << (s.whiskers_touching ? csv::cell(s.first_onset_time) : std::string()) << ','
+        << csv::cell(s.peak_MB) << ',' << s.peak_MB_whisker << ',' << csv::cell(s.mean_peak_MB) << ','
+        << csv::cell(s.mean_peak_FT) << ',' << csv::cell(s.max_abs_z_error) << ','
+        << (s.whiskers_touching ? std::string() : std::string("\"first_onset: ") + kNoOnsetAtPitch + "\"") << '\n';
   }
 }
 
 }  // namespace
 
+LabelledData array_data(const ArrayResult& r, const SimulationConfig& c) {
+  LabelledData d;
+  const std::size_t P = r.n_pitches, W = r.n_whiskers, F = r.n_frames;
+  const std::vector<std::string> pwf{"pitch", "whisker", "time"}, pwf3{"pitch", "whisker", "time", "component"};
+  // Every [pitch][whisker][frame] variable is compressed when large (most frames hold zeros).
+  const auto per_frame = [&](std::string name, const auto& values, std::string units, std::string long_name) {
+    d.variables.push_back({.name = std::move(name), .dims = pwf, .shape = {P, W, F}, .values = std::span(values),
+                           .units = std::move(units), .long_name = std::move(long_name), .compress = true});
+  };
+  const auto vector_per_frame = [&](std::string name, const std::vector<double>& values, std::string units,
+                                    std::string long_name) {
+    d.variables.push_back({.name = std::move(name), .dims = pwf3, .shape = {P, W, F, 3}, .values = std::span(values),
+                           .units = std::move(units), .long_name = std::move(long_name), .compress = true});
+  };
+  d.variables.push_back({.name = "pitch", .dims = {"pitch"}, .shape = {P}, .values = std::span(r.pitches),
+                         .units = "rad", .long_name = "head pitch added to the head's own pitch (the pitch sweep)"});
+  d.variables.push_back({.name = "whisker", .dims = {"whisker"}, .shape = {W}, .values = std::span(r.labels),
+                         .units = "text", .long_name = "whisker name: row, column, side (R right, L left)"});
+  d.variables.push_back({.name = "time", .dims = {"time"}, .shape = {F}, .values = std::span(r.times), .units = "s",
+                         .long_name = "time of the frame"});
+  d.add_component_coordinate();
+  std::vector<std::int8_t> side, row, column;
+  for (const WhiskerSpec& s : c.morphology.whiskers) {
+    side.push_back(s.side == Side::right ? 1 : -1);
+    row.push_back(static_cast<std::int8_t>(s.row));
+    column.push_back(static_cast<std::int8_t>(s.column));
+  }
+  d.add_owned({.name = "side", .dims = {"whisker"}, .shape = {W}, .units = "code", .long_name = "side of the face",
+               .codes = "1 right, -1 left"},
+              std::move(side));
+  d.add_owned({.name = "row", .dims = {"whisker"}, .shape = {W}, .units = "code", .long_name = "row of the whisker",
+               .codes = "1 A, 2 B, 3 C, 4 D, 5 E"},
+              std::move(row));
+  d.add_owned({.name = "column", .dims = {"whisker"}, .shape = {W}, .units = "1",
+               .long_name = "column of the whisker (0: the straddler, Greek column)"},
+              std::move(column));
+  d.variables.push_back({.name = "state", .dims = pwf, .shape = {P, W, F}, .values = std::span(r.state),
+                         .units = "code", .long_name = "contact state", .codes = contact_state_code_table(),
+                         .compress = true});
+  d.variables.push_back({.name = "solver_status", .dims = pwf, .shape = {P, W, F},
+                         .values = std::span(r.solver_status), .units = "code",
+                         .long_name = "status of the frame's solve (not_in_contact: no solve)",
+                         .codes = status_code_table(), .compress = true});
+  per_frame("edge_index", r.edge, "1", "index of the object edge in contact (-1: none)");
+  per_frame("s_applied", r.s_applied, "m", "arc length of the contact point from the base");
+  vector_per_frame("contact_point_W", r.contact_W, "m", "contact point, world frame");
+  vector_per_frame("force_W", r.force_W, "N", "contact force on the whisker, world frame");
+  vector_per_frame("moment_W", r.moment_W, "N m", "moment of the contact force about the base, world frame");
+  vector_per_frame("force_B", r.force_B, "N", "force at the base, whisker frame (Fx axial, Fy, Fz)");
+  vector_per_frame("moment_B", r.moment_B, "N m", "moment at the base, whisker frame (Mx twist, My, Mz)");
+  per_frame("FT", r.FT, "N", "transverse force at the base, sqrt(Fy^2 + Fz^2)");
+  per_frame("MB", r.MB, "N m", "bending moment at the base, sqrt(My^2 + Mz^2)");
+  per_frame("FD", r.FD, "rad", "direction of the transverse force, atan2(Fz, Fy)");
+  per_frame("MD", r.MD, "rad", "direction of the bending moment, atan2(Mz, My)");
+  per_frame("normal_force", r.normal_force, "N", "contact force normal to the edge");
+  per_frame("edge_force", r.edge_force, "N", "contact force along the edge direction");
+  per_frame("z_edge", r.z_edge, "m", "contact position along the edge from its point");
+  per_frame("z_error", r.z_error, "m", "eq. (7) bound on the contact height error of edge mode, for mu");
+  vector_per_frame("base_W", r.base_W, "m", "whisker base point, world frame");
+  for (const auto& [name, values, what] :
+       {std::tuple{"theta", &r.theta, "protraction angle theta"}, std::tuple{"phi", &r.phi, "elevation angle phi"},
+        std::tuple{"zeta", &r.zeta, "roll angle zeta"}})
+    d.variables.push_back({.name = name, .dims = {"whisker", "time"}, .shape = {W, F}, .values = std::span(*values),
+                           .units = "rad",
+                           .long_name = std::string(what) + " of the whisker in the morphology source's convention"});
+  const std::size_t R = r.render_frames.size(), N = r.n_nodes, E = r.n_edges;
+  d.variables.push_back({.name = "render/frame", .dims = {"frame"}, .shape = {R}, .values = std::span(r.render_frames),
+                         .units = "1", .long_name = "index of the rendered frame along time"});
+  d.add_index_coordinate("render", "node", N, "node of the whisker chain (0: base)");
+  d.add_index_coordinate("render", "edge", E, "object edge");
+  d.add_index_coordinate("render", "end", 2, "end of the edge segment");
+  d.variables.push_back({.name = "render/rest", .dims = {"frame", "whisker", "node", "component"},
+                         .shape = {R, W, N, 3}, .values = std::span(r.rest_shapes), .units = "m",
+                         .long_name = "rest (undeflected) whisker at the frame's pose, world frame", .compress = true});
+  d.variables.push_back({.name = "render/deflected", .dims = {"frame", "whisker", "node", "component"},
+                         .shape = {R, W, N, 3}, .values = std::span(r.deflected_shapes), .units = "m",
+                         .long_name = "deflected whisker, world frame", .compress = true});
+  d.variables.push_back({.name = "render/edges", .dims = {"frame", "edge", "end", "component"}, .shape = {R, E, 2, 3},
+                         .values = std::span(r.render_edges), .units = "m",
+                         .long_name = "object edges as segments (infinite edges clipped to 60 mm), world frame",
+                         .compress = true});
+  // The scene's surfaces (docs/objects.md), self-contained: each one's description (SI, its frame) and a mesh's
+  // vertices and triangles; render/object_poses places them at each rendered frame.
+  const std::size_t O = r.n_objects;
+  d.add_index_coordinate("render", "object", O, "surface object (group objects)");
+  d.add_index_coordinate("render", "pose", 12, "R_WO row by row, then p_WO");
+  d.variables.push_back({.name = "render/object_poses", .dims = {"frame", "object", "pose"}, .shape = {R, O, 12},
+                         .values = std::span(r.render_object_poses), .units = "m",
+                         .long_name = "pose of each surface object: rotation R_WO (row by row, 1) and origin p_WO [m]"});
+  std::vector<LabelledAttribute> object_attributes;
+  std::size_t i = 0;
+  for (const SceneObject& o : c.objects) {
+    if (!o.shape) continue;
+    const std::string group = "objects/" + std::to_string(i++);
+    nlohmann::json description = shape_to_json(*o.shape);
+    description["frame"] = std::string(to_string(o.frame));
+    object_attributes.push_back({group, "description", description.dump()});
+    if (const auto* mesh = dynamic_cast<const Mesh*>(o.shape.get())) {
+      std::vector<double> v;
+      std::vector<int> t;
+      for (const auto& p : mesh->vertices()) v.insert(v.end(), {p.x(), p.y(), p.z()});
+      for (const auto& f : mesh->triangles()) t.insert(t.end(), {f[0], f[1], f[2]});
+      d.add_index_coordinate(group, "vertex", mesh->vertices().size(), "mesh vertex");
+      d.add_index_coordinate(group, "corner", 3, "corner of the triangle");
+      d.add_index_coordinate(group, "triangle", mesh->triangles().size(), "mesh triangle");
+      d.add_owned({.name = group + "/vertices", .dims = {"vertex", "component"}, .shape = {mesh->vertices().size(), 3},
+                   .units = "m", .long_name = "mesh vertices in the object's frame", .compress = true},
+                  std::move(v));
+      d.add_owned({.name = group + "/triangles", .dims = {"triangle", "corner"}, .shape = {mesh->triangles().size(), 3},
+                   .units = "1", .long_name = "vertex indices of each triangle", .compress = true},
+                  std::move(t));
+    }
+  }
+  d.attributes = {{"", "layout", "[pitch][whisker][frame]"},
+                  {"", "morphology", c.morphology.source},
+                  {"", "mode", std::string(to_string(c.mode))},
+                  {"", "mu", c.mu},
+                  {"", "slopes", std::string(to_string(c.whisking.slopes))},
+                  // The code tables also stay root attributes, as files before the "codes" dataset attribute had.
+                  {"", "state_codes", contact_state_code_table()},
+                  {"", "solver_status_codes", status_code_table()},
+                  {"render", "pitch_index", static_cast<double>(c.render_pitch)}};
+  d.attributes.insert(d.attributes.end(), object_attributes.begin(), object_attributes.end());
+  return d;
+}
+
 void write_array_outputs(const ArrayResult& result, const SimulationConfig& config, const nlohmann::json& config_json,
                          const std::filesystem::path& dir, const ArrayOutputOptions& options) {
-  std::filesystem::create_directories(dir);
-  // The serial tail after the parallel simulation, overlapped: array.h5 is written on a second thread (the
-  // only thread in HDF5, which Debian builds without thread safety) while this one writes the text outputs.
-  // All are renamed together once every one is written, array.h5 first, as when they were written in turn.
-  StagedFiles h5_files, files;
+  // One set (output_folder.hpp); the figures of an older run are not carried over.
+  OutputFolder folder(dir, kArrayFigures);
+  // The serial tail after the parallel simulation, overlapped: array.h5 is written on a second thread while
+  // this one writes the text outputs; all are published together once every one is written.
   std::future<void> h5 = std::async(std::launch::async, [&] {
-    h5_files.stage(dir / "array.h5", [&](const std::string& tmp) { create_array_h5(result, config, tmp); });
+    folder.stage("array.h5", [&](const std::string& tmp) { create_array_h5(result, config, tmp); });
   });
   try {
     if (options.csv)
-      files.stage(dir / "array.csv", [&](const std::string& tmp) { create_array_csv(result, tmp); });
-    files.stage_text(dir / "pitch_summary.csv", [&](std::ostream& out) { print_pitch_summary_csv(result, out); });
-    stage_json_file(files, dir / "config.json", config_json);
-    stage_json_file(files, dir / "summary.json", array_summary_json(result, config));
+      folder.stage("array.csv",
+                   [&](const std::string& tmp) { create_array_csv(result, config, tmp, dir / "array.csv"); });
+    folder.stage_text("pitch_summary.csv", [&](std::ostream& out) { print_pitch_summary_csv(result, out); });
+    stage_json_file(folder, "config.json", config_json);
+    stage_json_file(folder, "summary.json", array_summary_json(result, config));
   } catch (...) {
-    h5.wait();  // h5_files must outlive its writer
+    h5.wait();  // the folder must outlive its writer
     throw;
   }
   h5.get();  // rethrows the HDF5 writer's exception
-  remove_figures(dir, kArrayFigures);
-  h5_files.commit();
-  files.commit();
+  folder.commit();
 }
 
 std::vector<std::size_t> h5_dataset_shape(const std::filesystem::path& path, const std::string& name) {

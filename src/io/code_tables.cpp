@@ -1,6 +1,9 @@
 #include "code_tables.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+
+#include "vibrissa/core/checks.hpp"
 
 namespace vibrissa::io {
 
@@ -26,6 +29,20 @@ std::string status_code_table() {
 
 std::string contact_state_code_table() {
   return table({ContactState::free, ContactState::contact, ContactState::pushed_past});
+}
+
+std::map<int, std::string> code_labels(const std::string& table) {
+  std::map<int, std::string> labels;
+  std::size_t at = 0;
+  while (at < table.size()) {
+    const std::size_t end = std::min(table.find(", ", at), table.size());
+    const std::string entry = table.substr(at, end - at);
+    const std::size_t space = entry.find(' ');
+    VIBRISSA_DEMAND(space != std::string::npos);
+    labels[std::stoi(entry.substr(0, space))] = entry.substr(space + 1);
+    at = end + 2;
+  }
+  return labels;
 }
 
 std::int8_t status_code(std::string_view name, std::string_view field) {

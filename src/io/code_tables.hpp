@@ -2,6 +2,7 @@
 // The integer codes binary outputs store for enums, and their code tables (docs/formats.md, "Codes"): every
 // code dataset carries units "code" and a "codes" attribute in this text form.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <string_view>
 
@@ -17,6 +18,9 @@ inline constexpr std::int8_t kNotSolvedCode = -1;
 std::string status_code_table();
 /// "0 free, 1 contact, 2 pushed_past"
 std::string contact_state_code_table();
+
+/// The names of the codes of a code table ("0 free, 1 contact" -> {0: "free", 1: "contact"}); empty for "".
+std::map<int, std::string> code_labels(const std::string& table);
 
 /// Status code of a solver status name or "not_in_contact" (no solve: the frame is not in contact);
 /// throws std::invalid_argument naming `field` and the value otherwise.

@@ -1,5 +1,6 @@
 #include "csv_cells.hpp"
 
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -26,5 +27,7 @@ std::optional<double> number(const std::string& cell) {
   if (cell.empty() || cell == "nan" || cell == "NaN" || cell == "NAN") return std::numeric_limits<double>::quiet_NaN();
   return parse_decimal(cell);
 }
+
+std::string cell(double value) { return std::isnan(value) ? std::string() : format_value(value); }
 
 }  // namespace vibrissa::io::csv

@@ -1,8 +1,14 @@
 #include "h5_file.hpp"
 
+#include <fcntl.h>
+#include <hdf5_hl.h>
+#include <unistd.h>
+
+#include "output_target.hpp"
 #include "vibrissa/core/limits.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <stdexcept>
 
@@ -33,10 +39,21 @@ QuietErrors::QuietErrors() {
   H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
-QuietErrors::~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+QuietErrors::~QuietErrors() {
+  // An error left on this thread's stack makes thread-safe libhdf5 1.10 loop at exit ("HDF5: infinite loop
+  // closing library") when the error happened on a thread other than the main one.
+  H5Eclear2(H5E_DEFAULT);
+  H5Eset_auto2(H5E_DEFAULT, func_, data_);
+}
 
 Handle create_file(const std::string& path) {
-  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  // In memory (the core driver without a backing store): libhdf5 never writes to the disk, so a full disk
+  // or a file size limit is met by close_file's own write, not inside libhdf5, whose clean-up after a failed
+  // write crashes at exit (1.10.8: SIGSEGV in H5F__close_cb).
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  if (!fapl.valid() || H5Pset_fapl_core(fapl.get(), 4u << 20, false) < 0)
+    throw std::runtime_error(path + ": cannot create the HDF5 file");
+  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
   if (!f.valid()) throw std::runtime_error(path + ": cannot create the HDF5 file");
   return f;
 }
@@ -49,7 +66,25 @@ Handle open_file_read(const std::string& path) {
 }
 
 void close_file(Handle& file, const std::string& path) {
-  if (H5Fclose(file.release()) < 0) throw std::runtime_error(path + ": cannot finish the HDF5 file (disk full?)");
+  const ssize_t name_size = H5Fget_name(file.get(), nullptr, 0);
+  std::string name(name_size > 0 ? static_cast<std::size_t>(name_size) : 0, '\0');
+  const bool flushed = H5Fflush(file.get(), H5F_SCOPE_GLOBAL) >= 0;  // the metadata cache into the image
+  const ssize_t size = flushed ? H5Fget_file_image(file.get(), nullptr, 0) : -1;
+  std::vector<char> image(size > 0 ? static_cast<std::size_t>(size) : 0);
+  if (name_size <= 0 || H5Fget_name(file.get(), name.data(), name.size() + 1) < 0 || size <= 0 ||
+      H5Fget_file_image(file.get(), image.data(), image.size()) != size)
+    throw std::runtime_error(path + ": cannot finish the HDF5 file");
+  file.reset();
+  const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666);
+  if (fd < 0) throw std::runtime_error("cannot write " + quoted_path(path) + ": " + std::strerror(errno));
+  try {
+    write_all(fd, image.data(), image.size(), path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  if (::close(fd) != 0 && errno != EINTR)
+    throw std::runtime_error("cannot write " + quoted_path(path) + ": " + std::strerror(errno));
 }
 
 Handle create_group(hid_t parent, const std::string& name) {
@@ -126,40 +161,47 @@ void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t memory
     throw std::runtime_error("cannot write HDF5 dataset '" + name + "'");
   write_string_attribute(d.get(), "units", options.units);
   if (!options.codes.empty()) write_string_attribute(d.get(), "codes", options.codes);
+  if (!options.long_name.empty()) write_string_attribute(d.get(), "long_name", options.long_name);
+}
+
+// Variable-length UTF-8 strings (netCDF-4's NC_STRING).
+Handle utf8_string_type() {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  if (!type.valid() || H5Tset_size(type.get(), H5T_VARIABLE) < 0 || H5Tset_cset(type.get(), H5T_CSET_UTF8) < 0)
+    throw std::runtime_error("cannot create the HDF5 string type");
+  return type;
 }
 
 }  // namespace
 
-void write_dataset(hid_t loc, const std::string& name, const std::vector<double>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const double> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data.data(), dims, options);
 }
-void write_dataset(hid_t loc, const std::string& name, const std::vector<float>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const float> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, data.data(), dims, options);
 }
-void write_dataset(hid_t loc, const std::string& name, const std::vector<int>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const int> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_STD_I32LE, H5T_NATIVE_INT, data.data(), dims, options);
 }
-void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int16_t>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const std::int16_t> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_STD_I16LE, H5T_NATIVE_INT16, data.data(), dims, options);
 }
-void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int8_t>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const std::int8_t> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options) {
   write_raw(loc, name, H5T_STD_I8LE, H5T_NATIVE_INT8, data.data(), dims, options);
 }
 
-void write_fixed_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data) {
-  std::size_t width = 1;
-  for (const auto& s : data) width = std::max(width, s.size() + 1);
-  std::vector<char> buffer(width * std::max<std::size_t>(data.size(), 1), '\0');
-  for (std::size_t i = 0; i < data.size(); ++i) std::memcpy(&buffer[i * width], data[i].data(), data[i].size());
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.get(), width);
-  H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
-  write_raw(loc, name, type.get(), type.get(), buffer.data(), {static_cast<hsize_t>(data.size())}, {"text"});
+void write_strings(hid_t loc, const std::string& name, std::span<const std::string> data,
+                   const DatasetOptions& options) {
+  std::vector<const char*> pointers;
+  pointers.reserve(data.size());
+  for (const std::string& text : data) pointers.push_back(text.c_str());
+  const Handle type = utf8_string_type();
+  write_raw(loc, name, type.get(), type.get(), pointers.data(), {static_cast<hsize_t>(data.size())}, options);
 }
 
 namespace {
@@ -287,12 +329,11 @@ std::optional<double> read_double_attribute(hid_t loc, const std::string& name, 
 }
 
 void write_string_attribute(hid_t loc, const std::string& name, const std::string& value) {
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.get(), value.size() + 1);
-  H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
+  const Handle type = utf8_string_type();
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   Handle a(H5Acreate2(loc, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  if (!a.valid() || H5Awrite(a.get(), type.get(), value.c_str()) < 0)
+  const char* text = value.c_str();
+  if (!a.valid() || H5Awrite(a.get(), type.get(), &text) < 0)
     throw std::runtime_error("cannot write HDF5 attribute '" + name + "'");
 }
 
@@ -301,6 +342,20 @@ void write_double_attribute(hid_t loc, const std::string& name, double value) {
   Handle a(H5Acreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
   if (!a.valid() || H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &value) < 0)
     throw std::runtime_error("cannot write HDF5 attribute '" + name + "'");
+}
+
+void make_dimension_scale(hid_t loc, const std::string& name) {
+  Handle d(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid() || H5DSset_scale(d.get(), name.substr(name.rfind('/') + 1).c_str()) < 0)
+    throw std::runtime_error("cannot make HDF5 dataset '" + name + "' a dimension scale");
+}
+
+void attach_dimension_scale(hid_t loc, const std::string& name, unsigned index, hid_t scale_loc,
+                            const std::string& scale) {
+  Handle d(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  Handle s(H5Dopen2(scale_loc, scale.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.valid() || !s.valid() || H5DSattach_scale(d.get(), s.get(), index) < 0)
+    throw std::runtime_error("cannot attach dimension scale '" + scale + "' to HDF5 dataset '" + name + "'");
 }
 
 }  // namespace vibrissa::io::h5

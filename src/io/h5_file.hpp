@@ -1,12 +1,15 @@
 #pragma once
 // The one RAII wrapper of the HDF5 C API (private to the library), used by trial files, trial results, array
 // outputs and the DeepLabCut HDF5 reader (src/recon/dlc_h5.cpp). Numeric data are read as native double (HDF5
-// converts integer datasets on read) and written little-endian in the type of the vector; strings as
-// variable- or fixed-length datasets and attributes.
+// converts integer datasets on read) and written little-endian in the type of the vector; strings are written
+// as variable-length UTF-8 (netCDF-4's "string": h5py, xarray's netCDF4 and h5netcdf engines and MATLAB read
+// them as text) and read in either form. Dimension scales (hdf5_hl) name the dimensions of datasets, so that
+// netCDF-4 readers see named dimensions with coordinates (io/labelled_data.hpp).
 #include <hdf5.h>
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,10 +50,11 @@ class QuietErrors {
   void* data_ = nullptr;
 };
 
+/// A new HDF5 file for `path`, built in memory: nothing is written until close_file.
 Handle create_file(const std::string& path);
 Handle open_file_read(const std::string& path);
-/// Closes a file being written and reports failure (a full disk shows here); `path` names it in the error.
-/// Close every group of the file first.
+/// Writes a file made by create_file to its path and closes it; reports failure (a full disk shows here) with
+/// the system's reason; `path` names it in the error. Close every group and dataset of the file first.
 void close_file(Handle& file, const std::string& path);
 Handle create_group(hid_t parent, const std::string& name);
 
@@ -67,24 +71,26 @@ std::vector<double> read_doubles(hid_t loc, const std::string& name, std::vector
 /// Every dataset written states its units (docs/formats.md, "Units and codes"): "1" dimensionless, "rad",
 /// "code" for enum codes (then `codes` gives the code table), "text" for strings.
 struct DatasetOptions {
-  DatasetOptions(std::string units_, bool compress_ = false, std::string codes_ = {})
-      : units(std::move(units_)), compress(compress_), codes(std::move(codes_)) {}
+  DatasetOptions(std::string units_, bool compress_ = false, std::string codes_ = {}, std::string long_name_ = {})
+      : units(std::move(units_)), compress(compress_), codes(std::move(codes_)), long_name(std::move(long_name_)) {}
   std::string units;      ///< the dataset's "units" attribute; required (std::logic_error when empty)
   bool compress = false;  ///< chunk + deflate datasets of more than 4096 values (mostly-zero arrays shrink)
   std::string codes;      ///< the "codes" attribute of a code dataset ("0 free, 1 contact, ...") unless empty
+  std::string long_name;  ///< the "long_name" attribute (CF: what the values are, in words) unless empty
 };
-void write_dataset(hid_t loc, const std::string& name, const std::vector<double>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const double> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options);
-void write_dataset(hid_t loc, const std::string& name, const std::vector<float>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const float> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options);
-void write_dataset(hid_t loc, const std::string& name, const std::vector<int>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const int> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options);
-void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int16_t>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const std::int16_t> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options);
-void write_dataset(hid_t loc, const std::string& name, const std::vector<std::int8_t>& data,
+void write_dataset(hid_t loc, const std::string& name, std::span<const std::int8_t> data,
                    const std::vector<hsize_t>& dims, const DatasetOptions& options);
-/// Fixed-length strings, NUL-padded to the longest + 1 (units "text").
-void write_fixed_strings(hid_t loc, const std::string& name, const std::vector<std::string>& data);
+/// One dimension of variable-length UTF-8 strings (units "text" unless `options` say otherwise).
+void write_strings(hid_t loc, const std::string& name, std::span<const std::string> data,
+                   const DatasetOptions& options);
 
 std::optional<std::string> read_string_attribute(hid_t loc, const std::string& name, const std::string& source);
 /// A fixed-length string attribute with every byte (embedded NULs and padding kept; a binary pickle);
@@ -97,7 +103,15 @@ std::optional<std::string> read_string_attribute_bytes(hid_t loc, const std::str
 std::vector<double> read_table_member(hid_t loc, const std::string& dataset, const std::string& member,
                                       std::size_t& width, const std::string& source);
 std::optional<double> read_double_attribute(hid_t loc, const std::string& name, const std::string& source);
+/// A scalar variable-length UTF-8 string attribute.
 void write_string_attribute(hid_t loc, const std::string& name, const std::string& value);
 void write_double_attribute(hid_t loc, const std::string& name, double value);
+
+/// Makes one-dimensional dataset `name` the dimension scale of the dimension of the same name: a netCDF
+/// coordinate variable (docs/formats.md, "Labelled HDF5 outputs").
+void make_dimension_scale(hid_t loc, const std::string& name);
+/// Attaches dimension scale `scale` (a dataset path from `scale_loc`) to dimension `index` of dataset `name`.
+void attach_dimension_scale(hid_t loc, const std::string& name, unsigned index, hid_t scale_loc,
+                            const std::string& scale);
 
 }  // namespace vibrissa::io::h5

@@ -18,6 +18,7 @@ enum SlotState : int { kFree = 0, kFilling = 1, kLive = 2 };
 
 struct Slot {
   std::atomic<int> state{kFree};
+  bool folder = false;  // written before the slot turns live
   char path[kMaxTemporaryPath] = {};
 };
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
@@ -34,9 +35,7 @@ extern "C" void cleanup_and_reraise(int sig) {
   raise(sig);
 }
 
-}  // namespace
-
-std::size_t register_temporary(const std::filesystem::path& path) {
+std::size_t register_slot(const std::filesystem::path& path, bool folder) {
   const std::string& text = path.native();
   if (text.size() >= kMaxTemporaryPath)
     throw std::runtime_error("temporary file path is " + std::to_string(text.size()) + " bytes, longer than " +
@@ -45,12 +44,18 @@ std::size_t register_temporary(const std::filesystem::path& path) {
     int expected = kFree;
     if (!g_slots[i].state.compare_exchange_strong(expected, kFilling)) continue;
     std::memcpy(g_slots[i].path, text.c_str(), text.size() + 1);
+    g_slots[i].folder = folder;
     g_slots[i].state.store(kLive);
     return i;
   }
   throw std::runtime_error("more than " + std::to_string(kMaxLiveTemporaries) +
                            " temporary files open at once; cannot track " + text);
 }
+
+}  // namespace
+
+std::size_t register_temporary(const std::filesystem::path& path) { return register_slot(path, false); }
+std::size_t register_temporary_folder(const std::filesystem::path& path) { return register_slot(path, true); }
 
 void unregister_temporary(std::size_t slot) noexcept {
   if (slot < g_slots.size()) g_slots[slot].state.store(kFree);
@@ -64,7 +69,9 @@ std::size_t live_temporaries() noexcept {
 
 void unlink_live_temporaries() noexcept {
   for (Slot& s : g_slots)
-    if (s.state.load() == kLive) ::unlink(s.path);
+    if (s.state.load() == kLive && !s.folder) ::unlink(s.path);
+  for (Slot& s : g_slots)
+    if (s.state.load() == kLive && s.folder) ::rmdir(s.path);
 }
 
 void install_cleanup_signal_handlers() {

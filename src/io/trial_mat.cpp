@@ -2,7 +2,9 @@
 // of one struct variable named `trial`. Read with matio (v5, v7.3 where matio was built with HDF5).
 #include <matio.h>
 
+#include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 
@@ -129,9 +131,33 @@ trial::Trial read_trial_mat(const std::string& path) {
   return assemble_trial(r);
 }
 
-void write_trial_mat(const trial::Trial& t, const std::string& path) {
-  const TrialArrays arrays = disassemble_trial(t);
-  write_atomically(path, [&](const std::string& tmp) {
+namespace {
+
+// matio reports no failed write (1.5.23: a full disk or a file size limit leaves a truncated file and every
+// call returns success), so the written file is checked: a MAT v5 file is a 128-byte header and then
+// elements, each an 8-byte tag (type, byte count) and its bytes padded to 8; they must end exactly at the end
+// of the file, and there must be `variables` of them.
+void check_mat5_complete(const std::string& file, const std::string& target, std::size_t variables) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  const auto size = static_cast<std::uint64_t>(in ? static_cast<std::streamoff>(in.tellg()) : 0);
+  std::uint64_t offset = 128;
+  std::size_t elements = 0;
+  while (in && offset + 8 <= size) {
+    unsigned char tag[8] = {};
+    in.seekg(static_cast<std::streamoff>(offset));
+    in.read(reinterpret_cast<char*>(tag), 8);
+    const std::uint64_t bytes = std::uint64_t(tag[4]) | std::uint64_t(tag[5]) << 8 | std::uint64_t(tag[6]) << 16 |
+                                std::uint64_t(tag[7]) << 24;  // little-endian, as matio writes on x86
+    offset += 8 + (bytes + 7) / 8 * 8;
+    ++elements;
+  }
+  if (!in || offset != size || elements != variables)
+    throw std::runtime_error("cannot write '" + target + "': the .mat file came out incomplete (" +
+                             std::to_string(size) + " bytes; disk full or a file size limit?)");
+}
+
+void write_trial_mat_variables(const TrialArrays& arrays, const std::string& tmp, const std::string& path) {
+  {
     MatPtr mat(Mat_CreateVer(tmp.c_str(), nullptr, MAT_FT_MAT5));
     if (!mat) throw std::runtime_error(path + ": cannot create the .mat file");
     auto put = [&](const std::string& name, matio_classes cls, matio_types type, std::vector<std::size_t> dims,
@@ -186,6 +212,16 @@ void write_trial_mat(const trial::Trial& t, const std::string& path) {
     }
     if (Mat_VarWrite(mat.get(), units.get(), MAT_COMPRESSION_NONE) != 0)
       throw std::runtime_error(path + ": cannot write variable 'units'");
+  }
+}
+
+}  // namespace
+
+void write_trial_mat(const trial::Trial& t, const std::string& path) {
+  const TrialArrays arrays = disassemble_trial(t);
+  write_atomically(path, [&](const std::string& tmp) {
+    write_trial_mat_variables(arrays, tmp, path);
+    check_mat5_complete(tmp, path, arrays.arrays.size() + arrays.texts.size() + arrays.numbers.size() + 1);
   });
 }
 

@@ -1,16 +1,15 @@
 #include "vibrissa/io/trial_results.hpp"
 
 #include <cmath>
-#include <iomanip>
 #include <map>
 #include <numbers>
 #include <stdexcept>
 
 #include "code_tables.hpp"
-#include "h5_file.hpp"
+#include "csv_cells.hpp"
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/trial/trial_run.hpp"
-#include "vibrissa/io/atomic_file.hpp"
+#include "vibrissa/io/output_folder.hpp"
 #include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/json_file.hpp"
 #include "vibrissa/io/nan_reasons.hpp"
@@ -23,43 +22,53 @@ namespace {
 
 constexpr double deg = 180.0 / std::numbers::pi;
 
+// One mode's columns; `what` describes the mode in the column descriptions.
 void add_mode(ResultTable& t, const PipelineResult& r, Mode mode, const std::string& prefix) {
   const std::size_t n = r.frames.size();
-  auto col = [&](const std::string& name, const char* units, auto&& get) {
+  const std::string what = std::string(" (") + std::string(to_string(mode)) + " mode)";
+  auto col = [&](const std::string& name, const char* units, const std::string& description, auto&& get) {
     std::vector<double> v(n);
     for (std::size_t i = 0; i < n; ++i) {
       const ModeFrame& m = r.frames[i].mode(mode);
       v[i] = m.ok() ? static_cast<double>(get(m)) : std::nan("");
     }
-    t.numeric.push_back({prefix + name, std::move(v), units});
+    t.numeric.push_back({prefix + name, std::move(v), units, description + what});
   };
   std::vector<std::string> status(n);
   for (std::size_t i = 0; i < n; ++i) {
     const ModeFrame& m = r.frames[i].mode(mode);
     status[i] = m.solved ? std::string(to_string(m.status)) : std::string("not_in_contact");
   }
-  t.text.emplace_back(prefix + "status", std::move(status));
+  t.text.push_back({prefix + "status", std::move(status), "status of the frame's solve" + what});
   const char* xyz[3] = {"x", "y", "z"};
   for (int a = 0; a < 3; ++a)
-    col(std::string("contact_") + xyz[a], "m", [a](const ModeFrame& m) { return m.contact_W[a]; });
-  col("height", "m", [](const ModeFrame& m) { return m.height; });
-  col("s_applied", "m", [](const ModeFrame& m) { return m.s_applied; });
+    col(std::string("contact_") + xyz[a], "m", std::string("contact point, world ") + xyz[a],
+        [a](const ModeFrame& m) { return m.contact_W[a]; });
+  col("height", "m", "contact height along the edge", [](const ModeFrame& m) { return m.height; });
+  col("s_applied", "m", "arc length of the contact point from the base",
+      [](const ModeFrame& m) { return m.s_applied; });
   for (int a = 0; a < 3; ++a)
-    col(std::string("F") + xyz[a] + "_world", "N", [a](const ModeFrame& m) { return m.force_W[a]; });
+    col(std::string("F") + xyz[a] + "_world", "N", std::string("force at the base, world ") + xyz[a],
+        [a](const ModeFrame& m) { return m.force_W[a]; });
   for (int a = 0; a < 3; ++a)
-    col(std::string("M") + xyz[a] + "_world", "N m", [a](const ModeFrame& m) { return m.moment_W[a]; });
+    col(std::string("M") + xyz[a] + "_world", "N m", std::string("moment at the base, world ") + xyz[a],
+        [a](const ModeFrame& m) { return m.moment_W[a]; });
   for (int a = 0; a < 3; ++a)
-    col(std::string("F") + xyz[a] + "_B", "N", [a](const ModeFrame& m) { return m.signals_B.force[a]; });
+    col(std::string("F") + xyz[a] + "_B", "N", std::string("force at the base, whisker frame ") + xyz[a],
+        [a](const ModeFrame& m) { return m.signals_B.force[a]; });
   for (int a = 0; a < 3; ++a)
-    col(std::string("M") + xyz[a] + "_B", "N m", [a](const ModeFrame& m) { return m.signals_B.moment[a]; });
-  col("FT", "N", [](const ModeFrame& m) { return m.signals_B.FT; });
-  col("MB", "N m", [](const ModeFrame& m) { return m.signals_B.MB; });
-  col("FD_deg", "deg", [](const ModeFrame& m) { return m.signals_B.FD * deg; });
-  col("MD_deg", "deg", [](const ModeFrame& m) { return m.signals_B.MD * deg; });
-  col("normal_force", "N", [](const ModeFrame& m) { return m.normal_force; });
-  col("friction_force", "N", [](const ModeFrame& m) { return m.friction_force; });
-  col("shape_error", "m", [](const ModeFrame& m) { return m.shape_error; });
-  col("iterations", "1", [](const ModeFrame& m) { return m.iterations; });
+    col(std::string("M") + xyz[a] + "_B", "N m", std::string("moment at the base, whisker frame ") + xyz[a],
+        [a](const ModeFrame& m) { return m.signals_B.moment[a]; });
+  col("FT", "N", "transverse force at the base", [](const ModeFrame& m) { return m.signals_B.FT; });
+  col("MB", "N m", "bending moment at the base", [](const ModeFrame& m) { return m.signals_B.MB; });
+  col("FD", "rad", "direction of the transverse force", [](const ModeFrame& m) { return m.signals_B.FD; });
+  col("MD", "rad", "direction of the bending moment", [](const ModeFrame& m) { return m.signals_B.MD; });
+  col("normal_force", "N", "contact force normal to the edge", [](const ModeFrame& m) { return m.normal_force; });
+  col("friction_force", "N", "contact force on the whisker along the edge",
+      [](const ModeFrame& m) { return m.friction_force; });
+  col("shape_error", "m", "mean distance of the solved shape from the tracked one",
+      [](const ModeFrame& m) { return m.shape_error; });
+  col("iterations", "1", "solver iterations", [](const ModeFrame& m) { return m.iterations; });
 }
 
 nlohmann::json num(double v) { return finite_or_null(v); }
@@ -232,84 +241,88 @@ ResultTable result_table(const PipelineResult& r, const TrialAnalysis& a) {
     period[i] = r.frames[i].period;
     edge[i] = r.frames[i].period_edge;
   }
-  t.numeric = {{"time", time, "s"},     {"contact", contact, "1"}, {"period", period, "1"},
-               {"period_edge", edge, "1"}, {"theta", tr.theta, "rad"}, {"phi", tr.phi, "rad"},
-               {"zeta", tr.zeta, "rad"}};
+  t.numeric = {{"time", time, "s", "time of the frame"},
+               {"contact", contact, "1", "1 in a contact frame, else 0"},
+               {"period", period, "1", "contact period of the frame, from 0 (-1: none)"},
+               {"period_edge", edge, "1", "1 in the first and last two frames of a contact period"},
+               {"theta", tr.theta, "rad", "protraction angle used (filtered)"},
+               {"phi", tr.phi, "rad", "elevation angle used (filtered)"},
+               {"zeta", tr.zeta, "rad", "roll angle used (filtered; fitted during contact)"}};
   if (r.has_contact_point_mode) add_mode(t, r, Mode::contact_point, "cp_");
   if (r.has_edge_mode) add_mode(t, r, Mode::edge, "edge_");
   if (r.has_frictional_mode) add_mode(t, r, Mode::frictional_edge, "fric_");
   if (a.friction) {
-    t.numeric.push_back({"mu", a.friction->mu, "1"});
+    t.numeric.push_back({"mu", a.friction->mu, "1", "|friction force| / normal force (contact-point mode)"});
     std::vector<double> o(n), used(n);
     for (std::size_t i = 0; i < n; ++i) {
       o[i] = a.friction->outlier[i];
       used[i] = a.friction->used[i];
     }
-    t.numeric.push_back({"mu_outlier", o, "1"});
-    t.numeric.push_back({"mu_used", used, "1"});
+    t.numeric.push_back({"mu_outlier", o, "1", "1 where the normal force is below 0.1 mN"});
+    t.numeric.push_back({"mu_used", used, "1", "1 where mu enters the friction statistics"});
   }
-  if (a.friction_frictional) t.numeric.push_back({"fric_mu", a.friction_frictional->mu, "1"});
+  if (a.friction_frictional)
+    t.numeric.push_back({"fric_mu", a.friction_frictional->mu, "1", "|friction force| / normal force (frictional edge mode)"});
   if (a.z_error) {
-    t.numeric.push_back({"z_error", a.z_error->measured, "m"});
-    t.numeric.push_back({"z_error_eq6", a.z_error->eq6, "m"});
-    t.numeric.push_back({"z_error_eq7", a.z_error->eq7, "m"});
+    t.numeric.push_back({"z_error", a.z_error->measured, "m", "measured z error, z_edge - z_contact_point"});
+    t.numeric.push_back({"z_error_eq6", a.z_error->eq6, "m", "z error predicted by eq. (6)"});
+    t.numeric.push_back({"z_error_eq7", a.z_error->eq7, "m", "z error predicted by eq. (7)"});
   }
-  t.numeric.push_back({"kinematic_height", a.kinematic.predicted, "m"});
-  t.numeric.push_back({"tracked_height", a.kinematic.measured, "m"});
+  t.numeric.push_back({"kinematic_height", a.kinematic.predicted, "m", "contact height predicted by kinematics"});
+  t.numeric.push_back({"tracked_height", a.kinematic.measured, "m", "tracked contact height"});
   return t;
 }
 
 namespace {
 
 void print_result_table_csv(const ResultTable& t, std::ostream& out) {
-  out << std::setprecision(12);
   bool first = true;
   for (const auto& c : t.numeric) out << (first ? "" : ",") << c.name, first = false;
-  for (const auto& c : t.text) out << "," << c.first;
+  for (const auto& c : t.text) out << "," << c.name;
   out << "\n";
   const std::size_t n = t.numeric.empty() ? 0 : t.numeric.front().values.size();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < t.numeric.size(); ++k) {
       if (k) out << ',';
       const double v = t.numeric[k].values[i];
-      if (std::isfinite(v)) out << v;
-      else out << "nan";
+      out << (std::isnan(v) ? std::string("nan") : csv::cell(v));
     }
-    for (const auto& c : t.text) out << ',' << c.second[i];
+    for (const auto& c : t.text) out << ',' << c.values[i];
     out << '\n';
   }
 }
 
 void create_result_table_h5(const ResultTable& t, const std::string& path) {
-  h5::QuietErrors quiet;
-  h5::Handle file = h5::create_file(path);
-  {
-    h5::Handle g = h5::create_group(file.get(), "frames");
-    for (const auto& c : t.numeric)
-      h5::write_dataset(g.get(), c.name, c.values, {static_cast<hsize_t>(c.values.size())}, {c.units});
-    // Status columns as int8 codes with their code table (text in frames.csv).
-    for (const auto& [name, v] : t.text) {
-      std::vector<std::int8_t> codes;
-      codes.reserve(v.size());
-      for (const auto& s : v) codes.push_back(status_code(s, name));
-      h5::write_dataset(g.get(), name, codes, {static_cast<hsize_t>(codes.size())},
-                        {"code", false, status_code_table()});
-    }
-  }
-  h5::write_string_attribute(file.get(), "format", "vibrissa-trial-results");
-  h5::close_file(file, path);
+  write_labelled_h5(trial_results_data(t), path);
 }
 
 }  // namespace
 
+LabelledData trial_results_data(const ResultTable& table) {
+  LabelledData d;
+  const std::size_t n = table.numeric.empty() ? 0 : table.numeric.front().values.size();
+  for (const NumericColumn& c : table.numeric)
+    d.variables.push_back({.name = c.name, .dims = {"time"}, .shape = {n}, .values = std::span(c.values),
+                           .units = c.units, .long_name = c.long_name});
+  // Status columns as int8 codes with their code table (text in frames.csv and in Python's columns).
+  for (const TextColumn& c : table.text) {
+    std::vector<std::int8_t> codes;
+    codes.reserve(c.values.size());
+    for (const auto& s : c.values) codes.push_back(status_code(s, c.name));
+    d.add_owned({.name = c.name, .dims = {"time"}, .shape = {n}, .units = "code", .long_name = c.long_name,
+                 .codes = status_code_table()},
+                std::move(codes));
+  }
+  d.attributes = {{"", "format", "vibrissa-trial-results"}, {"", "format_version", 2.0}};
+  return d;
+}
+
 void write_trial_outputs(const ResultTable& table, const nlohmann::json& summary, const std::filesystem::path& dir) {
-  std::filesystem::create_directories(dir);
-  StagedFiles files;
-  files.stage_text(dir / "frames.csv", [&](std::ostream& out) { print_result_table_csv(table, out); });
-  files.stage(dir / "frames.h5", [&](const std::string& tmp) { create_result_table_h5(table, tmp); });
-  stage_json_file(files, dir / "summary.json", summary);  // last: its presence marks a finished run
-  remove_figures(dir, kTrialFigures);
-  files.commit();
+  OutputFolder folder(dir, kTrialFigures);  // one set: frames.csv, frames.h5, summary.json (figures/ removed)
+  folder.stage_text("frames.csv", [&](std::ostream& out) { print_result_table_csv(table, out); });
+  folder.stage("frames.h5", [&](const std::string& tmp) { create_result_table_h5(table, tmp); });
+  stage_json_file(folder, "summary.json", summary);
+  folder.commit();
 }
 
 nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {

@@ -75,10 +75,10 @@ TEST(AtomicFile, CommitReplacesTheTargetAndForgetsTheTemporary) {
   EXPECT_EQ(live_temporaries(), 0u);
 }
 
-TEST(AtomicFile, WriterThatProducesNoFileIsAnErrorNamingTheTarget) {
+TEST(AtomicFile, WriterThatRemovesItsFileIsAnErrorNamingTheTarget) {
   const fs::path d = fresh_dir("nofile");
   try {
-    write_atomically(d / "frames.h5", [](const std::string&) {});
+    write_atomically(d / "frames.h5", [](const std::string& tmp) { fs::remove(tmp); });
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("frames.h5"), std::string::npos) << e.what();
@@ -132,9 +132,15 @@ TEST(TemporaryFiles, UnlinkLiveTemporariesRemovesExactlyTheLiveOnes) {
 TEST(TemporaryFiles, OverlongPathsAreRefusedNamingThePath) {
   const std::string name(kMaxTemporaryPath, 'x');
   try {
-    AtomicFile f(fs::temp_directory_path() / name);
+    register_temporary(fs::temp_directory_path() / name);
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("xxxx"), std::string::npos);
+  }
+  try {
+    AtomicFile f(fs::temp_directory_path() / name);  // too long for the file system: refused before any slot
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("xxxx"), std::string::npos);
   }
   EXPECT_EQ(live_temporaries(), 0u);

@@ -124,5 +124,5 @@ TEST(NanReasons, ArraySummariesExplainAPitchAtWhichNothingTouches) {
   std::getline(csv, header);
   std::getline(csv, row);
   EXPECT_TRUE(header.ends_with(",nan_reasons")) << header;
-  EXPECT_TRUE(row.ends_with(",\"first_onset_ms: no whisker touches an object at this head pitch\"")) << row;
+  EXPECT_TRUE(row.ends_with(",\"first_onset: no whisker touches an object at this head pitch\"")) << row;
 }

@@ -21,8 +21,10 @@ namespace vibrissa {
 std::string format_value(double v);
 /// "[x, y, z]" with format_value.
 std::string format_value(const Eigen::Vector3d& v);
-/// Input text for a message: at most limits::max_quoted_chars characters, then "... (N bytes)";
-/// control bytes are shown as '?'.
+/// Text for a message, always valid UTF-8: control bytes and bytes that are not UTF-8 are shown as '?'.
+std::string printable_text(std::string_view text);
+/// Input text for a message: printable_text of at most limits::max_quoted_chars bytes (never half a
+/// character), then "... (N bytes)".
 std::string quote_text(std::string_view text);
 
 /// The number in `text` if all of it is one decimal number ("1.5", "-2e-3", "+7", "inf", "nan"); nullopt

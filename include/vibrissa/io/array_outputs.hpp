@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vibrissa/array/simulation.hpp"
+#include "vibrissa/io/labelled_data.hpp"
 
 namespace vibrissa::io {
 
@@ -24,6 +25,10 @@ struct ArrayOutputOptions {
 void write_array_outputs(const array::ArrayResult& result, const array::SimulationConfig& config,
                          const nlohmann::json& config_json, const std::filesystem::path& dir,
                          const ArrayOutputOptions& options = {});
+
+/// The variables of array.h5 (docs/array.md, "Outputs"): dimensions pitch, whisker, time, component (group
+/// render: frame, node, edge, end), coordinates, units, descriptions. Borrows `result`.
+LabelledData array_data(const array::ArrayResult& result, const array::SimulationConfig& config);
 
 nlohmann::json array_summary_json(const array::ArrayResult& result, const array::SimulationConfig& config);
 /// Shape of dataset `name` in an HDF5 file (for checking outputs); throws std::runtime_error if absent.

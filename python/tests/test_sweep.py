@@ -1,0 +1,271 @@
+"""Sweeps on Dask (docs/sweeps.md): a real LocalCluster of worker processes, one worker killed mid-run, Ctrl-C,
+resuming, and results bit for bit those of the same runs made one by one. Every cluster a test starts is shut
+down by it, also on failure, and every wait has a deadline."""
+
+import contextlib
+import json
+import logging
+import os
+import pathlib
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import vibrissa
+from vibrissa import sweep_runs, sweeps as sweep_module
+
+xr = pytest.importorskip("xarray")
+distributed = pytest.importorskip("distributed")
+psutil = pytest.importorskip("psutil")
+
+# Small array runs: 3 whiskers against a peg, each run a fraction of a second.
+BASE = {"morphology": {"whiskers": ["C1", "C2", "D1"]}, "time": {"frames": 600},
+        "objects": [{"type": "peg", "frame": "world", "point_mm": [20, -8, -3]}]}
+GRID = {"objects.0.point_mm.0": [17.0, 20.0, 23.0], "whisking.amplitude_deg": [20, 30]}
+
+
+@contextlib.contextmanager
+def deadline(seconds, on_expiry):
+    """Calls on_expiry() (which should kill what hangs) and interrupts the main thread if the block lasts longer
+    than `seconds`."""
+    expired = threading.Event()
+
+    def expire():
+        expired.set()
+        on_expiry()
+        import _thread
+        _thread.interrupt_main()
+    timer = threading.Timer(seconds, expire)
+    timer.start()
+    try:
+        yield
+    except KeyboardInterrupt:
+        if expired.is_set():
+            pytest.fail(f"timed out after {seconds} s")
+        raise
+    finally:
+        timer.cancel()
+
+
+@pytest.fixture
+def local_cluster():
+    """A LocalCluster of 2 worker processes started here; its Client and {address: pid} of the workers. Shut
+    down afterwards; every worker process it started is killed if still alive."""
+    with tempfile.TemporaryDirectory() as scratch:
+        cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                           dashboard_address=None, silence_logs=logging.ERROR,
+                                           local_directory=scratch)
+        client = distributed.Client(cluster)
+        started = set()
+
+        def pids():
+            found = client.run(os.getpid)
+            started.update(found.values())
+            return found
+        try:
+            yield client, pids
+        finally:
+            client.close()
+            cluster.close()
+            for pid in started:
+                with contextlib.suppress(ProcessLookupError):
+                    os.kill(pid, signal.SIGKILL)
+
+
+@pytest.fixture(scope="module")
+def serial():
+    """The sweep's runs made one by one in this process (scheduler "serial": no Dask)."""
+    return vibrissa.sweep("array", BASE, grid=GRID, scheduler="serial")
+
+
+def assert_same_results(expected, found):
+    """Same variables, coordinates and values, bit for bit (NaN where NaN)."""
+    assert set(expected.variables) == set(found.variables)
+    for name in expected.variables:
+        e, f = expected[name].values, found[name].values
+        assert e.dtype == f.dtype and e.shape == f.shape, name
+        if e.dtype.kind == "f":
+            assert np.array_equal(e.view(np.uint64), f.view(np.uint64)), name  # bit for bit, NaN included
+        else:
+            assert np.array_equal(e, f), name
+
+
+def test_a_worker_killed_mid_run_loses_nothing_and_results_match_serial(local_cluster, serial, tmp_path):
+    client, pids = local_cluster
+    workers = pids()
+    killed = {}
+
+    def kill_a_busy_worker(done, total):
+        if done == 0 or killed:
+            return
+        busy = [address for address, keys in client.processing().items() if keys and address in workers]
+        if busy:
+            killed["pid"], killed["keys"] = workers[busy[0]], client.processing()[busy[0]]
+            os.kill(killed["pid"], signal.SIGKILL)
+
+    with deadline(120, lambda: [os.kill(p, signal.SIGKILL) for p in pids().values()]):
+        found = vibrissa.sweep("array", BASE, grid=GRID, client=client, chunk_size=1, out=tmp_path / "dask",
+                               progress=kill_a_busy_worker).load()
+    assert killed, "no worker was busy after the first chunk"
+    assert not psutil.pid_exists(killed["pid"]) or psutil.Process(killed["pid"]).status() == psutil.STATUS_ZOMBIE
+    # Its chunk ran again elsewhere: every run is there once, and the results are the serial ones bit for bit.
+    index = json.loads((tmp_path / "dask" / "index.json").read_text())["chunks"]
+    assert sorted(map(int, index)) == list(range(6))
+    assert_same_results(serial, found)
+    assert dict(found.sizes) == {"objects.0.point_mm.0": 3, "whisking.amplitude_deg": 2, "pitch": 1, "whisker": 3,
+                                 "time": 600, "component": 3}
+    # ... and those of simulate_array called directly.
+    config = sweep_runs.configured(BASE, {"objects.0.point_mm.0": 23.0, "whisking.amplitude_deg": 20})
+    direct = vibrissa.simulate_array(config)
+    one = found.sel({"objects.0.point_mm.0": 23.0, "whisking.amplitude_deg": 20})
+    for name in ("FT", "MB", "state", "contact_point_W", "force_B"):
+        np.testing.assert_array_equal(one[name].values, direct[name], err_msg=name)
+    assert (direct.state == 1).any(), "the peg should touch some whisker"
+
+
+def test_an_interrupted_sweep_resumes_where_it_stopped(serial, tmp_path, monkeypatch):
+    ran = []
+    original = sweep_module.run_chunk
+
+    def counting(kind, base, runs, variables=None):
+        ran.append([index for index, _ in runs])
+        return original(kind, base, runs, variables)
+    monkeypatch.setattr(sweep_module, "run_chunk", counting)
+
+    def stop_after_two_chunks(done, total):
+        if done >= 2:
+            raise KeyboardInterrupt
+    out = tmp_path / "out"
+    with pytest.raises(KeyboardInterrupt):
+        vibrissa.sweep("array", BASE, grid=GRID, scheduler="serial", chunk_size=1, out=out,
+                       progress=stop_after_two_chunks)
+    index = json.loads((out / "index.json").read_text())["chunks"]
+    assert sorted(index) == ["0", "1"] and not (out / "sweep.nc").exists()
+    # A chunk file written but not yet listed (killed between the two writes) is computed again, not doubled.
+    del index["1"]
+    (out / "index.json").write_text(json.dumps({"chunks": index}))
+    ran.clear()
+    seen = []
+    resumed = vibrissa.sweep("array", BASE, grid=GRID, scheduler="serial", out=out,
+                             progress=lambda done, total: seen.append(done)).load()
+    assert ran == [[1], [2], [3], [4], [5]] and seen[0] == 1 and seen[-1] == 6
+    assert_same_results(serial, resumed)
+    # Done: a third call reads the results without running anything.
+    ran.clear()
+    vibrissa.sweep("array", BASE, grid=GRID, scheduler="serial", out=out).close()
+    assert ran == []
+    with pytest.raises(ValueError, match="holds another sweep"):
+        vibrissa.sweep("array", BASE, grid={"whisking.amplitude_deg": [10, 20]}, scheduler="serial", out=out)
+
+
+def children(pid):
+    with contextlib.suppress(psutil.NoSuchProcess):
+        return psutil.Process(pid).children(recursive=True)
+    return []
+
+
+def test_cli_ctrl_c_shuts_the_cluster_down_and_the_sweep_resumes(cli, serial, tmp_path):
+    config = {"kind": "array", "base": BASE, "grid": GRID, "chunk_size": 1, "variables": ["state", "FT", "MB"]}
+    path = tmp_path / "sweep.json"
+    path.write_text(json.dumps(config))
+    out = tmp_path / "out"
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}  # the CLI finds its own package
+    process = subprocess.Popen([cli, "sweep", str(path), "--out", str(out), "--workers", "2"], env=env,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    workers = []
+    try:
+        with deadline(120, process.kill):
+            while not (out / "index.json").exists():  # a chunk is done: the workers are up and busy
+                assert process.poll() is None, process.communicate()
+                workers = [p for p in children(process.pid) if "python" in p.name()] or workers
+                time.sleep(0.05)
+            workers = children(process.pid) or workers
+            process.send_signal(signal.SIGINT)
+            stdout, stderr = process.communicate()
+    finally:
+        process.kill()
+        for w in workers:
+            with contextlib.suppress(psutil.NoSuchProcess):
+                w.kill()
+    assert process.returncode == 130, stderr
+    assert "interrupted" in stderr and "run the same command to resume" in stderr
+    assert len(workers) >= 2
+    gone, alive = psutil.wait_procs(workers, timeout=10)
+    assert not alive, f"worker processes left running: {alive}"
+    finished = json.loads((out / "index.json").read_text())["chunks"]
+    assert 0 < len(finished) < 6 and not (out / "sweep.nc").exists()
+
+    # The same command resumes it (here in this process: the scheduler is not part of the sweep).
+    done = subprocess.run([cli, "sweep", str(path), "--out", str(out), "--scheduler", "serial"], env=env,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "wrote" in done.stdout
+    with xr.open_dataset(out / "sweep.nc") as found:
+        assert_same_results(serial[["state", "FT", "MB"]], found.load())
+
+
+def test_trial_and_solve_sweeps_give_the_numbers_of_the_direct_calls(tmp_path):
+    cases = vibrissa.sweep("solve", {"whisker": {"length": 0.03, "curvature": 20.0},
+                                     "load": {"mode": "point", "point": [0.02, 0.005, 0.0]}},
+                           grid={"load.point.1": [0.004, 0.005, 0.006], "whisker.curvature": [10.0, 20.0]},
+                           scheduler="serial")
+    assert cases.FT.dims == ("load.point.1", "whisker.curvature") and cases.force_W.dims[-1] == "component"
+    direct = vibrissa.solve_point(vibrissa.Whisker.from_parabola(0.03, 10.0), [0.02, 0.006, 0.0])
+    one = cases.sel({"load.point.1": 0.006, "whisker.curvature": 10.0})
+    assert one.FT.item() == direct.whisker_frame.FT and np.array_equal(one.force_W.values, direct.force_W)
+    assert one.status.item() == int(vibrissa.Status.converged) and "converged" in cases.status.attrs["codes"]
+
+    trials = vibrissa.sweep("trial", {"synth": {"duration": 0.3}, "analysis": {"mu": 0.48}},
+                            runs=[{"synth.mu": 0.3}, {"synth.mu": 0.6, "synth.seed": 5}], scheduler="serial")
+    assert trials.cp_FT.dims == ("run", "frame") and list(trials["synth.mu"].values) == [0.3, 0.6]
+    direct = vibrissa.analyze_trial(vibrissa.synthesize_trial(duration=0.3, mu=0.6, seed=5), mu=0.48)
+    second = trials.isel(run=1)
+    np.testing.assert_array_equal(second.cp_FT.values, direct.cp_FT)
+    np.testing.assert_array_equal(second.time.values, direct.time)
+    assert second["summary.friction.median"].item() == direct.summary["friction"]["median"]
+    assert trials["synth.seed"].values.tolist()[1] == 5
+
+
+def test_bad_sweeps_are_refused_before_anything_runs(tmp_path):
+    with pytest.raises(ValueError, match=r"sweep run 1 \(time.frames=1\): time.frames must be an integer in \[2, "):
+        vibrissa.sweep("array", BASE, grid={"time.frames": [100, 1]}, scheduler="serial")
+    with pytest.raises(ValueError, match="objects is a list of 1, so it has no entry 3"):
+        vibrissa.sweep("array", BASE, grid={"objects.3.point_mm.0": [1.0]}, scheduler="serial")
+    with pytest.raises(ValueError, match="kind must be one of"):
+        vibrissa.sweep("arrays", BASE)
+    with pytest.raises(ValueError, match="not both"):
+        vibrissa.sweep("array", BASE, grid=GRID, runs=[{}])
+    with pytest.raises(ValueError, match="sweep the components of a list"):
+        vibrissa.sweep("array", BASE, grid={"objects.0.point_mm": [[20, -8, -3], [21, -8, -3]]}, scheduler="serial")
+    with pytest.raises(ValueError, match=r"variables: \['nope'\] are not outputs"):
+        vibrissa.sweep("array", BASE, grid={"whisking.amplitude_deg": [10]}, variables=["FT", "nope"],
+                       scheduler="serial")
+    assert not list(tmp_path.iterdir())
+
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+PACKAGE_PARENT = str(pathlib.Path(vibrissa.__file__).resolve().parents[1])
+
+
+def test_the_documented_sweep_and_the_scaling_script_run_as_written(tmp_path):
+    script = tmp_path / "peg_sweep.py"
+    script.write_text(re.findall(r"```python\n(.*?)```", (REPO / "docs" / "sweeps.md").read_text(), flags=re.S)[0])
+    env = dict(os.environ, PYTHONPATH=PACKAGE_PARENT)
+    done = subprocess.run([sys.executable, str(script)], cwd=tmp_path, env=env, capture_output=True, text=True,
+                          timeout=180)
+    assert done.returncode == 0, done.stderr
+    with xr.open_dataset(tmp_path / "peg_sweep" / "sweep.nc") as found:
+        assert dict(found.sizes)["objects.0.point_mm.0"] == 3 and "MB" in found
+    done = subprocess.run([sys.executable, str(REPO / "examples" / "sweep_scaling.py"), "--runs", "8", "--frames", "20",
+                           "--workers", "2", "--variables", "FT", "MB", "--overhead-tasks", "6"],
+                          env=env, capture_output=True, text=True, timeout=180)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.count("bit-identical to serial: True") == 2 and "overhead per task" in done.stdout

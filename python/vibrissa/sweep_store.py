@@ -1,0 +1,213 @@
+"""The output folder of a sweep (docs/sweeps.md, "Files"): written by the client only, each file atomically.
+
+    sweep.json              what is swept (kind, base configuration, parameters, variables, chunk size)
+    chunks/chunk-NNNNNN.npz the results of one finished chunk of runs: NumPy arrays stacked over its runs, and
+                            their dimensions and attributes as JSON (`meta`); the client's own bookkeeping
+    index.json              the finished chunks: a chunk counts as done once it is listed here
+    sweep.nc                every result on the sweep's dimensions (netCDF-4: xarray.open_dataset), written
+                            once the last chunk is in
+
+A chunk file is renamed into place before the index lists it, so an interrupted sweep (Ctrl-C, a killed
+client, a power cut) leaves finished chunks that a rerun of the same sweep skips, and at worst one chunk file
+that the index does not list yet, which the rerun computes and replaces: nothing is lost or counted twice.
+"""
+
+import contextlib
+import json
+import os
+import pathlib
+
+import numpy as np
+
+__all__ = ["SweepStore"]
+
+FORMAT = "vibrissa-sweep"
+VERSION = 1
+
+
+@contextlib.contextmanager
+def _replacing(path):
+    """Yields a temporary beside `path` (`.tmp-<pid>-<name>`, as every vibrissa output: docs/formats.md, "Atomic
+    outputs"); once the block completes it is flushed to disk and renamed over `path`, else removed."""
+    path = pathlib.Path(path)
+    tmp = path.with_name(f".tmp-{os.getpid()}-{path.name}")
+    try:
+        yield tmp
+        with open(tmp, "rb") as f:
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            os.remove(tmp)
+
+
+def _write_json(path, value):
+    with _replacing(path) as tmp:
+        tmp.write_text(json.dumps(value, indent=1) + "\n")
+
+
+class SweepStore:
+    """The folder `directory` of the sweep described by `spec` (a JSON-able dict). Opening a folder that holds
+    another sweep raises ValueError naming what differs."""
+
+    def __init__(self, directory, spec):
+        self.directory = pathlib.Path(directory)
+        self.spec = dict(spec, format=FORMAT, format_version=VERSION)
+        (self.directory / "chunks").mkdir(parents=True, exist_ok=True)
+        spec_path = self.directory / "sweep.json"
+        if spec_path.is_file():
+            stored = json.loads(spec_path.read_text())
+            differing = sorted(k for k in set(stored) | set(self.spec) if stored.get(k) != self.spec.get(k))
+            if differing:
+                raise ValueError(f"{self.directory} holds another sweep (its sweep.json differs in {differing}): "
+                                 "choose another output folder, or delete this one to start over")
+        else:
+            _write_json(spec_path, self.spec)
+        index_path = self.directory / "index.json"
+        self.index = json.loads(index_path.read_text())["chunks"] if index_path.is_file() else {}
+        # A listed chunk whose file is gone is computed again.
+        self.index = {k: v for k, v in self.index.items() if (self.directory / v["file"]).is_file()}
+        self._coords = None  # the output coordinates every chunk must share
+
+    @property
+    def result_path(self):
+        return self.directory / "sweep.nc"
+
+    def finished(self):
+        """Ids (int) of the chunks whose results are on disk."""
+        return {int(k) for k in self.index}
+
+    def add(self, chunk, result):
+        """Writes the results of chunk `chunk` (run_chunk's dict) and lists it in the index. Results of a chunk
+        already listed are ignored (a task computed twice is stored once)."""
+        if str(chunk) in self.index:
+            return
+        self._check_coordinates(result)
+        name = f"chunks/chunk-{chunk:06d}.npz"
+        arrays = {f"variable/{n}": values for n, (_, _, values) in result["variables"].items()}
+        arrays.update({f"coordinate/{n}": values for n, (_, _, values) in result["coords"].items()})
+        meta = {kind: {n: {"dims": list(dims), "attrs": attrs} for n, (dims, attrs, _) in result[kind].items()}
+                for kind in ("variables", "coords")}
+        with _replacing(self.directory / name) as tmp, open(tmp, "wb") as f:
+            np.savez(f, runs=np.asarray(result["runs"]), meta=np.array(json.dumps(meta)), **arrays)
+        self.index[str(chunk)] = {"file": name, "runs": [min(result["runs"]), max(result["runs"]) + 1],
+                                  "build": result["build"]}
+        _write_json(self.directory / "index.json", {"chunks": self.index})
+
+    def _load(self, chunk):
+        """The arrays of a chunk file: (runs, {name: values}, {name: values} of coordinates, meta)."""
+        with np.load(self.directory / self.index[chunk]["file"], allow_pickle=False) as f:
+            meta = json.loads(str(f["meta"]))
+            variables = {n: f[f"variable/{n}"] for n in meta["variables"]}
+            coords = {n: f[f"coordinate/{n}"] for n in meta["coords"]}
+            return f["runs"], variables, coords, meta
+
+    def _check_coordinates(self, result):
+        if self._coords is None and self.index:
+            self._coords = self._load(next(iter(self.index)))[2]
+        found = {name: values for name, (_, _, values) in result["coords"].items()}
+        if self._coords is None:
+            self._coords = found
+        for name, values in self._coords.items():
+            other = found.get(name)
+            if other is None or other.shape != values.shape or not np.array_equal(other, values):
+                raise ValueError(f"runs {min(result['runs'])}-{max(result['runs'])}: their {name} coordinate differs "
+                                 "from the other runs': the runs of a sweep must share their dimensions (sweep "
+                                 f"parameters that change {name} in separate sweeps)")
+
+    def assemble(self, parameters, runs, attributes):
+        """Writes sweep.nc: every variable of the chunk files on dimensions `parameters` ({name: values}, a grid,
+        C order) or, for a list of runs (`parameters` None), on dimension run with each swept path a coordinate
+        along it (`runs`: the list of {path: value}). The layout is written with h5netcdf (netCDF-4), the values
+        with h5py one chunk file at a time (memory: one chunk)."""
+        import h5netcdf
+        import h5py
+
+        chunks = sorted(self.index, key=int)
+        _, first, coords, meta = self._load(chunks[0])
+        if parameters is not None:
+            names = list(parameters)
+            shape = tuple(len(v) for v in parameters.values())
+        else:
+            names, shape = ["run"], (len(runs),)
+        outputs = set(first) | set(coords)
+        clash = sorted(set(names) & outputs)
+        if clash:
+            raise ValueError(f"swept parameter(s) {clash} have the names of outputs: rename them in the sweep")
+        with _replacing(self.result_path) as tmp:
+            with h5netcdf.File(tmp, "w") as f:
+                f.attrs.update(attributes)
+                f.dimensions.update(dict(zip(names, shape)))
+                for name, values in coords.items():
+                    f.dimensions.update(dict(zip(meta["coords"][name]["dims"], values.shape)))
+                coordinates = []
+                if parameters is not None:
+                    for name, values in parameters.items():
+                        _write_variable(f, name, (name,), _coordinate_values(values, name), _parameter_attrs(name))
+                else:
+                    _write_variable(f, "run", ("run",), np.arange(len(runs)), {"units": "1", "long_name": "run, from 0"})
+                    for path in sorted({p for run in runs for p in run}):
+                        values = [run.get(path) for run in runs]
+                        _write_variable(f, path, ("run",), _coordinate_values(values, path), _parameter_attrs(path))
+                        coordinates.append(path)
+                for name, values in coords.items():
+                    _write_variable(f, name, meta["coords"][name]["dims"], values, meta["coords"][name]["attrs"])
+                for name, values in first.items():
+                    dims = (*names, *meta["variables"][name]["dims"][1:])
+                    attrs = dict(meta["variables"][name]["attrs"])
+                    if coordinates:
+                        attrs["coordinates"] = " ".join(coordinates)
+                    # A run's values as one compressed HDF5 chunk when they are many; small ones stored plainly.
+                    layout = ({"chunks": (1,) * len(names) + values.shape[1:], "compression": "gzip",
+                               "compression_opts": 1} if values[0].size >= _COMPRESS_FROM else {})
+                    f.create_variable(name, dims, values.dtype, **layout).attrs.update(attrs)
+            with h5py.File(tmp, "r+") as f:
+                for chunk in chunks:
+                    run_indices, variables, _, _ = self._load(chunk)
+                    where = [np.unravel_index(int(r), shape) for r in run_indices]
+                    for name, values in variables.items():
+                        target = f[name]
+                        for j, index in enumerate(where):
+                            target[index] = values[j]
+
+
+# Variables of at least this many values per run are compressed (mostly zeros and NaN: they shrink tenfold).
+_COMPRESS_FROM = 4096
+
+
+# Units of a swept input, read from its key (inputs name their units: docs/formats.md, "Units").
+_INPUT_UNITS = {"deg": "deg", "mm": "mm", "um": "um", "ms": "ms", "s": "s", "Hz": "Hz", "GPa": "GPa", "Pa": "Pa",
+                "m": "m", "rad": "rad", "N": "N"}
+
+
+def _parameter_attrs(path):
+    attrs = {"long_name": f"swept parameter {path} (in the input's units)"}
+    suffix = path.split(".")[-1].rpartition("_")[2] if "_" in path.split(".")[-1] else ""
+    if suffix in _INPUT_UNITS:
+        attrs["units"] = _INPUT_UNITS[suffix]
+    return attrs
+
+
+def _coordinate_values(values, path):
+    """The values of a swept parameter as one NumPy array: numbers (int64 if all integers, else float64; a
+    missing value NaN), strings (missing: ""), or booleans as int8 0/1."""
+    present = [v for v in values if v is not None]
+    if all(isinstance(v, bool) for v in present):
+        return np.array([int(bool(v)) for v in values], dtype=np.int8)
+    if all(isinstance(v, str) for v in present):
+        return np.array(["" if v is None else v for v in values], dtype=object)
+    if all(isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) for v in present):
+        if all(isinstance(v, (int, np.integer)) for v in present) and len(present) == len(values):
+            return np.array(values, dtype=np.int64)
+        return np.array([np.nan if v is None else float(v) for v in values], dtype=np.float64)
+    raise ValueError(f"parameter {path!r}: swept values must be all numbers, all strings or all booleans "
+                     f"(sweep the components of a list one by one: '{path}.0'), got {values[:5]!r}")
+
+
+def _write_variable(f, name, dims, values, attrs):
+    import h5py
+    values = np.asarray(values)
+    text = values.dtype.kind in "OU"
+    variable = f.create_variable(name, dims, h5py.string_dtype() if text else values.dtype)
+    variable[...] = values.astype(object) if text else values
+    variable.attrs.update(attrs)
