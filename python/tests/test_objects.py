@@ -68,3 +68,23 @@ def test_mesh_from_file_and_case_json(tmp_path):
     assert result["status"] == direct.status.name
     if direct.status == vibrissa.Status.converged:
         assert np.allclose(result["force_W"], direct.force_W, rtol=1e-12)
+
+
+def test_array_against_a_sphere_records_the_object():
+    config = json.loads(vibrissa.default_array_config_json()) if hasattr(vibrissa, "default_array_config_json") else None
+    if config is None:
+        from vibrissa import _vibrissa
+        config = json.loads(_vibrissa.default_array_config_json())
+    config["objects"] = [{"type": "sphere", "frame": "world", "centre_mm": [20, -8, -3], "radius_mm": 3}]
+    config["morphology"]["whiskers"] = ["C1", "C2", "D1"]
+    config["time"]["frames"] = 120
+    config["output"] = {"render_count": 5}
+    result = vibrissa.simulate_array(config)
+    d = result.datasets if hasattr(result, "datasets") else result
+    state = np.asarray(d["state"])
+    assert (state == 1).any()
+    contact = state == 1
+    normal = np.asarray(d["normal_force"])
+    assert (normal[contact] > 0).all()
+    poses = np.asarray(d["render/object_poses"])
+    assert poses.shape[1:] == (1, 12)
