@@ -49,8 +49,8 @@ struct TrackerOptions {
   /// two are the frictionless and frictional object modes.
   ContactMode mode = ContactMode::edge;
   double mu = 0.0;     ///< Coulomb friction coefficient (frictional_edge) [-]
-  bool thickness = true;  ///< objects: the whisker's surface touches them (ObjectContact::thickness)
   SolveOptions solve;  ///< per-frame solves (find_other_roots is not used per frame)
+  bool thickness = true;  ///< objects: the whisker's surface touches them (ObjectContact::thickness)
 };
 void validate(const TrackerOptions& options);
 
