@@ -13,6 +13,7 @@
 #include "vibrissa/objects/clearance.hpp"
 #include "vibrissa/objects/mesh.hpp"
 #include "vibrissa/objects/sphere.hpp"
+#include "vibrissa/solve/solvers.hpp"
 
 using namespace vibrissa;
 
