@@ -95,7 +95,8 @@ from .pipeline import (  # noqa: F401
 __all__ = [
     "ArrayResult", "Trial", "TrialResult", "analyze_trial", "default_array_config", "read_trial",
     "simulate_array", "synthesize_trial", "synthesize_trial_defaults",
-    "BaseJoint", "BatchResult", "Case", "ContactMode", "ContactState", "ContactTracker", "Edge", "FrictionState", "LoadState", "Pose",
+    "BaseJoint", "BatchResult", "Box", "Case", "Cylinder", "Mesh", "Plane", "Shape", "Sphere", "solve_object",
+    "solve_frictional_object", "ContactMode", "ContactState", "ContactTracker", "Edge", "FrictionState", "LoadState", "Pose",
     "STATUS_NAMES", "Scheme", "Solution",
     "SolveOptions", "Status", "Whisker", "WhiskerFrameSignals", "WhiskerProperties", "__version__",
     "case_from_dict", "load_case", "make_whisker", "max_threads", "nearest_rest_point", "pose_from_rotation",
