@@ -13,6 +13,7 @@ import os
 
 import h5py
 import numpy as np
+import object_outline
 import style
 from atomic_save import save_animation, save_figure
 from matplotlib import animation
@@ -31,6 +32,8 @@ def load(path):
             frames=r["frame"][()],
             deflected=r["deflected"][()] * style.SCALE["mm"],
             edges=r["edges"][()] * style.SCALE["mm"],
+            objects=object_outline.load_objects(f),
+            object_poses=r["object_poses"][()] if "object_poses" in r else np.zeros((len(r["frame"]), 0, 12)),
             pitch_index=int(r.attrs["pitch_index"]),
             state=f["state"][()],
             contact=f["contact_point_W"][()] * style.SCALE["mm"],
@@ -58,7 +61,7 @@ class ArrayAnimation:
         pts = shapes.reshape(-1, 3)  # the whiskers set the ranges; a long object runs off the axes
         pts = pts[np.isfinite(pts).all(axis=1)]
         self.fig, self.axes = plt.subplots(1, 2, figsize=(style.PAPER_WIDTH_IN, 3.9))
-        self.lines, self.edge_lines, self.markers = [], [], []
+        self.lines, self.edge_lines, self.markers, self.object_patches = [], [], [], []
         for ax, (name, h, v) in zip(self.axes, VIEWS):
             ax.set_title(name)
             ax.set_xlabel(style.label(AXIS_NAMES[h], "mm"))
@@ -69,6 +72,8 @@ class ArrayAnimation:
             self.lines.append([ax.plot([], [])[0] for _ in range(shapes.shape[1])])
             self.edge_lines.append([ax.plot([], [], marker="o", ms=4, zorder=5, **style.OBJECT)[0]
                                     for _ in range(d["edges"].shape[1])])
+            self.object_patches.append([ax.fill([], [], fc=style.OBJECT["color"], alpha=0.25, ec=style.OBJECT["color"],
+                                                lw=0.8, zorder=4)[0] for _ in d["objects"]])
             self.markers.append(ax.plot([], [], ls="none", marker="o", ms=4, mec="white", mew=0.5, zorder=6,
                                         color=style.STATES[1]["color"])[0])
         self.fig.legend(handles=legend_handles(), loc="lower center", ncol=4, frameon=False)
@@ -85,6 +90,9 @@ class ArrayAnimation:
                 line.set(color=s["color"], ls=s["ls"], lw=s["lw"], zorder=s["zorder"])
             for e, line in enumerate(self.edge_lines[k]):
                 line.set_data(edges[e][:, h], edges[e][:, v])
+            shapes_2d = object_outline.outlines(d["objects"], d["object_poses"][i], h, v, style.SCALE["mm"])
+            for patch, xy in zip(self.object_patches[k], shapes_2d):
+                patch.set_xy(xy if len(xy) else np.zeros((1, 2)))
             touching = states[:, i] == 1
             self.markers[k].set_data(self.contact[touching, i, h], self.contact[touching, i, v])
         t = d["time"][d["frames"][i]] * style.SCALE["ms"]
@@ -92,7 +100,8 @@ class ArrayAnimation:
         pitch = np.degrees(d["pitch"][d["pitch_index"]])
         self.suptitle.set_text(f"Whisker array, head pitch {pitch:+.0f}°: t = {t:5.1f} ms, {n_c} in contact, "
                                f"{n_p} pushed past (frame {i + 1}/{len(d['frames'])})")
-        return [a for group in self.lines + self.edge_lines for a in group] + self.markers + [self.suptitle]
+        return ([a for group in self.lines + self.edge_lines + self.object_patches for a in group] + self.markers +
+                [self.suptitle])
 
     def busiest_frame(self):
         return int(np.argmax((self.states == 1).sum(axis=0)))

@@ -14,6 +14,8 @@ PACKAGES=(
   libbenchmark-dev         # micro-benchmarks
   libhdf5-dev              # HDF5 trial / array output
   libmatio-dev             # MATLAB .mat trial input
+  libcgal-dev              # objects: CGAL's AABB tree for mesh closest points (header-only)
+  libassimp-dev            # objects: reading OBJ, STL and PLY mesh files
   pybind11-dev python3-dev python3-pybind11   # Python extension
   python3-numpy python3-matplotlib python3-pytest python3-h5py
   python3-pandas           # TrialResult.to_dataframe() in the Python package

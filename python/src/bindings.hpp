@@ -15,6 +15,7 @@ namespace py = pybind11;
 void bind_core(py::module_& m);   // core.cpp: Scheme, BaseJoint, Pose, WhiskerProperties, Whisker
 void bind_solve(py::module_& m);  // solve.cpp: Status, SolveOptions, Edge, LoadState, Solution, solve_*
 void bind_contact(py::module_& m);  // contact.cpp: ContactMode, ContactTracker
+void bind_objects(py::module_& m);  // objects.cpp: Shape, Cylinder, Plane, Sphere, Box, Mesh, solve_object
 void bind_batch(py::module_& m);  // batch.cpp: solve_*_batch (GIL released, OpenMP)
 void bind_inverse(py::module_& m);  // inverse.cpp: solve_base_wrench, BaseWrenchResult, the series batch
 void bind_case(py::module_& m);   // case.cpp: Case JSON round trip (same code as `vibrissa solve`)

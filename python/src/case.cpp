@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "vibrissa/io/object_json.hpp"
 #include "convert.hpp"
 #include "vibrissa/core/plausibility.hpp"
 #include "vibrissa/io/case_json.hpp"
@@ -76,6 +77,14 @@ py::dict load_to_dict(const Load& load) {
           d["force"] = to_array(l.force);
           d["moment"] = to_array(l.moment);
           d["signals"] = l.signals.name();
+        } else if constexpr (std::is_same_v<T, ObjectLoad>) {
+          d["mode"] = "object";
+          d["object"] = py::module_::import("json").attr("loads")(io::shape_to_json(*l.shape).dump());
+          d["thickness"] = l.thickness;
+          d["friction_coefficient"] = l.friction_coefficient;
+          d["previous_contact"] = opt3(l.previous_contact);
+          d["arc_length_hint"] = l.arc_length_hint;
+          d["approach"] = opt3(l.approach);
         } else {
           d["mode"] = "frictional_edge";
           d["point"] = to_array(l.edge.point);

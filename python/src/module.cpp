@@ -13,6 +13,7 @@ PYBIND11_MODULE(_vibrissa, m) {
   m.attr("__version__") = VIBRISSA_VERSION;
   vibrissa::python::bind_core(m);
   vibrissa::python::bind_solve(m);
+  vibrissa::python::bind_objects(m);
   vibrissa::python::bind_contact(m);
   vibrissa::python::bind_batch(m);
   vibrissa::python::bind_inverse(m);

@@ -54,6 +54,8 @@ void bind_solve(py::module_& m) {
       .value("no_contact", Status::no_contact, "the object is out of reach, or the whisker is not pressed against it")
       .value("slipped_off", Status::slipped_off, "equilibrium would need the contact beyond the tip")
       .value("not_converged", Status::not_converged, "the iteration limit was reached or the solver stalled")
+      .value("second_contact", Status::second_contact,
+             "object modes: another part of the whisker would be inside the object (second_contact_arc_length)")
       .def_property_readonly("label", [](Status s) { return std::string(to_string(s)); },
                              "The name used in JSON results (\"converged\", ...).");
   py::enum_<ContactState>(m, "ContactState", "Whether the whisker touches its object (same codes in every file).")
@@ -197,6 +199,26 @@ void bind_solve(py::module_& m) {
           "shape_W",
           [](const Solution& s) { return to_array(s.shape_W); },
           "Deflected nodes, world [m], shape (N+1, 3), base first; (0, 3) when options.compute_shape is False.")
+      .def_property_readonly(
+          "surface",
+          [](const Solution& s) -> py::object {
+            if (!s.surface) return py::none();
+            const SurfaceContact& c = *s.surface;
+            py::dict d;
+            d["normal_W"] = to_array(c.normal_W);
+            d["friction_direction_W"] = to_array(c.friction_direction_W);
+            d["tip"] = c.tip;
+            d["feature"] = std::string(to_string(c.feature));
+            d["friction_force"] = c.friction_force;
+            d["clearance"] = c.clearance;
+            d["clearance_arc_length"] = c.clearance_arc_length;
+            return d;
+          },
+          "Object modes: a dict with normal_W (the object's outward normal at the contact), friction_direction_W, "
+          "tip (contact at the tip), feature ('face', 'edge', 'vertex'), friction_force [N], clearance [m] (the "
+          "smallest gap over the whisker) and clearance_arc_length [m]; None otherwise.")
+      .def_readonly("second_contact_arc_length", &Solution::second_contact_arc_length,
+                    "Status.second_contact: where the whisker would enter the object [m], else None.")
       .def_readonly("other_root_arc_length", &Solution::other_root_arc_length,
                     "Arc length [m] of another root, when options.find_other_roots found one, else None.")
       .def_property_readonly(

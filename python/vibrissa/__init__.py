@@ -26,6 +26,12 @@ SI units throughout: m, N, N·m, Pa, rad. World-frame quantities unless the name
 
 from ._vibrissa import (  # noqa: F401
     BaseJoint,
+    Box,
+    Cylinder,
+    Mesh,
+    Plane,
+    Shape,
+    Sphere,
     BaseWrenchIdentifiability,
     BaseWrenchResult,
     BaseWrenchRoot,
@@ -55,6 +61,8 @@ from ._vibrissa import (  # noqa: F401
     solve_edge,
     solve_force,
     solve_frictional_edge,
+    solve_frictional_object,
+    solve_object,
     solve_base_wrench,
     solve_point,
     status_from_string,
@@ -87,7 +95,8 @@ from .pipeline import (  # noqa: F401
 __all__ = [
     "ArrayResult", "Trial", "TrialResult", "analyze_trial", "default_array_config", "read_trial",
     "simulate_array", "synthesize_trial", "synthesize_trial_defaults",
-    "BaseJoint", "BatchResult", "Case", "ContactMode", "ContactState", "ContactTracker", "Edge", "FrictionState", "LoadState", "Pose",
+    "BaseJoint", "BatchResult", "Box", "Case", "Cylinder", "Mesh", "Plane", "Shape", "Sphere", "solve_object",
+    "solve_frictional_object", "ContactMode", "ContactState", "ContactTracker", "Edge", "FrictionState", "LoadState", "Pose",
     "STATUS_NAMES", "Scheme", "Solution",
     "SolveOptions", "Status", "Whisker", "WhiskerFrameSignals", "WhiskerProperties", "__version__",
     "case_from_dict", "load_case", "make_whisker", "max_threads", "nearest_rest_point", "pose_from_rotation",

@@ -31,6 +31,14 @@ from ._vibrissa import solve_dead_load as solve_dead_load
 from ._vibrissa import solve_edge as solve_edge
 from ._vibrissa import solve_force as solve_force
 from ._vibrissa import solve_frictional_edge as solve_frictional_edge
+from ._vibrissa import solve_frictional_object as solve_frictional_object
+from ._vibrissa import solve_object as solve_object
+from ._vibrissa import Box as Box
+from ._vibrissa import Cylinder as Cylinder
+from ._vibrissa import Mesh as Mesh
+from ._vibrissa import Plane as Plane
+from ._vibrissa import Shape as Shape
+from ._vibrissa import Sphere as Sphere
 from ._vibrissa import solve_point as solve_point
 from ._vibrissa import status_from_string as status_from_string
 from ._vibrissa import write_result as write_result

@@ -27,6 +27,7 @@ class Status(enum.IntEnum):
     no_contact: ClassVar[Status]
     slipped_off: ClassVar[Status]
     not_converged: ClassVar[Status]
+    second_contact: ClassVar[Status]
     @property
     def label(self) -> str: ...
 
@@ -196,6 +197,8 @@ class WhiskerFrameSignals:
     def MD(self) -> float: ...
 
 class Solution:
+    surface: Optional[dict[str, Any]]
+    second_contact_arc_length: Optional[float]
     @property
     def status(self) -> Status: ...
     @property
@@ -264,6 +267,37 @@ def solve_edge(whisker: Whisker, edge: Edge, arc_length_hint: Optional[float] = 
 def solve_frictional_edge(whisker: Whisker, edge: Edge, mu: float, previous_contact_W: ArrayLike, *,
                           options: Optional[SolveOptions] = None, warm: Warm = None,
                           approach_W: Optional[ArrayLike] = None, pose: Optional[Pose] = None) -> Solution: ...
+class Shape:
+    """An object's geometry (docs/objects.md)."""
+    type: str
+    def nearest(self, p: ArrayLike) -> dict[str, Any]: ...
+    def signed_distance(self, p: ArrayLike) -> float: ...
+    def describe(self) -> dict[str, Any]: ...
+class Cylinder(Shape):
+    def __init__(self, point: ArrayLike, axis: ArrayLike, radius: float, length: float = ...) -> None: ...
+class Plane(Shape):
+    def __init__(self, point: ArrayLike, normal: ArrayLike) -> None: ...
+class Sphere(Shape):
+    def __init__(self, centre: ArrayLike, radius: float) -> None: ...
+class Box(Shape):
+    def __init__(self, centre: ArrayLike, half_extents: ArrayLike, rotation: Optional[ArrayLike] = None) -> None: ...
+class Mesh(Shape):
+    vertices: Rows3
+    triangles: npt.NDArray[np.int64]
+    closed: bool
+    def __init__(self, vertices: ArrayLike, triangles: ArrayLike) -> None: ...
+    @staticmethod
+    def from_file(path: str, file_unit: str = "m", translation: Optional[ArrayLike] = None,
+                  rotation: Optional[ArrayLike] = None) -> Mesh: ...
+def solve_object(whisker: Whisker, object: Shape, *, thickness: bool = True, arc_length_hint: Optional[float] = None,
+                 options: Optional[SolveOptions] = None, warm: Warm = None, approach_W: Optional[ArrayLike] = None,
+                 pose: Optional[Pose] = None, object_position: Optional[ArrayLike] = None,
+                 object_rotation: Optional[ArrayLike] = None) -> Solution: ...
+def solve_frictional_object(whisker: Whisker, object: Shape, mu: float, previous_contact_W: ArrayLike, *,
+                            thickness: bool = True, options: Optional[SolveOptions] = None, warm: Warm = None,
+                            approach_W: Optional[ArrayLike] = None, pose: Optional[Pose] = None,
+                            object_position: Optional[ArrayLike] = None,
+                            object_rotation: Optional[ArrayLike] = None) -> Solution: ...
 class ContactTracker:
     def __init__(self, whisker: Whisker, mode: Union[ContactMode, str] = "edge", *, mu: float = 0.0,
                  options: Optional[SolveOptions] = None) -> None: ...

@@ -46,14 +46,14 @@ SceneObject make_edge(const Eigen::Vector3d& point, const Eigen::Vector3d& direc
                       ObjectFrame frame, const std::string& field) {
   check_point(point, field + ".point_mm");
   check_length(length, field + ".length_mm");
-  SceneObject o{"edge", frame, {segment(point, vibrissa::unit_direction(direction, field + ".direction"), length)}};
+  SceneObject o{"edge", frame, {segment(point, vibrissa::unit_direction(direction, field + ".direction"), length)}, nullptr};
   return o;
 }
 
 SceneObject make_peg(const Eigen::Vector3d& point, double height, ObjectFrame frame, const std::string& field) {
   check_point(point, field + ".point_mm");
   check_length(height, field + ".height_mm");
-  return SceneObject{"peg", frame, {segment(point, Eigen::Vector3d::UnitZ(), height)}};
+  return SceneObject{"peg", frame, {segment(point, Eigen::Vector3d::UnitZ(), height)}, nullptr};
 }
 
 SceneObject make_prism(const std::vector<Eigen::Vector3d>& vertices, const Eigen::Vector3d& axis, double length,
@@ -67,9 +67,29 @@ SceneObject make_prism(const std::vector<Eigen::Vector3d>& vertices, const Eigen
   if (n.norm() < 1e-12) fail(field + ".vertices_mm must span a triangle, but the 3 points are collinear");
   if (std::abs(n.normalized().dot(d)) < 1e-6)
     fail(field + ".axis must not lie in the plane of the cross-section");
-  SceneObject o{"prism", frame, {}};
+  SceneObject o{"prism", frame, {}, nullptr};
   for (const Eigen::Vector3d& v : vertices) o.edges.push_back(segment(v, d, length));
   return o;
+}
+
+bool scene_of_surfaces(const std::vector<SceneObject>& objects) {
+  bool surfaces = false, edges = false;
+  for (const SceneObject& o : objects) (o.shape ? surfaces : edges) = true;
+  if (surfaces && edges)
+    fail("objects: a scene holds edges (peg, edge, prism) or surfaces (cylinder, plane, sphere, box, mesh), not "
+         "both (a peg is a cylinder of radius 0)");
+  return surfaces;
+}
+
+std::vector<PlacedShape> shapes_in_world(const std::vector<SceneObject>& objects, const HeadPose& head) {
+  std::vector<PlacedShape> out;
+  for (const SceneObject& o : objects) {
+    if (!o.shape) continue;
+    PlacedShape p{o.shape.get(), {}};
+    if (o.frame == ObjectFrame::head) p.X_WO = ObjectPose{head.R_WH, head.p_W_head};
+    out.push_back(p);
+  }
+  return out;
 }
 
 std::vector<EdgeSegment> edges_in_world(const std::vector<SceneObject>& objects, const HeadPose& head) {

@@ -25,6 +25,8 @@ struct Prepared {
   std::vector<std::vector<Eigen::Matrix3d>> R_HB;  // [whisker][frame]
   std::vector<std::vector<HeadPose>> head;       // [pitch][frame]
   std::vector<std::vector<std::vector<EdgeSegment>>> edges;  // [pitch][frame][edge]
+  std::vector<std::vector<std::vector<PlacedShape>>> shapes;  // [pitch][frame][object] (scenes of surfaces)
+  bool surfaces = false;
   std::vector<int> render_index;                 // frame -> index among rendered frames, or -1
 };
 
@@ -49,6 +51,7 @@ class PairRun {
     o.solve.tolerance = c.tolerance;
     o.solve.max_iterations = c.max_iterations;
     o.solve.compute_shape = false;
+    o.thickness = c.thickness;
     return o;
   }
 
@@ -59,7 +62,8 @@ class PairRun {
       const Placement X(H.R_WH * prep_.R_HB[w_][f], H.point_to_world(spec_.p_H_base));
       const std::size_t k = r_.index(p_, w_, f);
       put3(r_.base_W, k, X.p_W_base);
-      const TrackedFrame& fr = tracker_.step(X, prep_.edges[p_][f]);
+      const TrackedFrame& fr =
+          prep_.surfaces ? tracker_.step(X, prep_.shapes[p_][f]) : tracker_.step(X, prep_.edges[p_][f]);
       r_.state[k] = static_cast<std::int8_t>(fr.state);
       if (fr.solved) {
         r_.solver_status[k] = static_cast<std::int8_t>(fr.solution.status);
@@ -87,7 +91,7 @@ class PairRun {
     r_.FD[k] = s.whisker_frame.FD;
     r_.MD[k] = s.whisker_frame.MD;
     r_.normal_force[k] = s.normal_force.value_or(0.0);
-    r_.edge_force[k] = s.edge_force.value_or(0.0);
+    r_.edge_force[k] = s.surface ? s.surface->friction_force : s.edge_force.value_or(0.0);
     r_.z_edge[k] = fr.edge_coordinate;
     // eq. (7): error bound on the contact position along the edge for friction coefficient mu.
     r_.z_error[k] = contact_error_bound(fr.edge_coordinate - fr.onset_edge_coordinate, c_.mu, r_.normal_force[k],
@@ -141,10 +145,13 @@ Prepared prepare(const SimulationConfig& c, ArrayResult& r) {
   }
   prep.head.resize(P);
   prep.edges.resize(P);
+  prep.shapes.resize(P);
+  prep.surfaces = scene_of_surfaces(c.objects);
   for (std::size_t p = 0; p < P; ++p) {
     for (std::size_t f = 0; f < F; ++f) {
       prep.head[p].push_back(c.head.at(c.times[f], c.pitches[p]));
       prep.edges[p].push_back(edges_in_world(c.objects, prep.head[p].back()));
+      prep.shapes[p].push_back(shapes_in_world(c.objects, prep.head[p].back()));
     }
   }
   prep.render_index.assign(F, -1);
@@ -242,6 +249,13 @@ ArrayResult simulate_array(const SimulationConfig& c, const RunControl& control)
 
   const Prepared prep = prepare(c, r);
   r.n_edges = prep.edges.front().front().size();
+  r.n_objects = prep.shapes.front().front().size();
+  for (int f : c.render_frames)
+    for (const PlacedShape& o : prep.shapes[static_cast<std::size_t>(c.render_pitch)][static_cast<std::size_t>(f)]) {
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r.render_object_poses.push_back(static_cast<float>(o.X_WO.R_WO(i, j)));
+      for (int i = 0; i < 3; ++i) r.render_object_poses.push_back(static_cast<float>(o.X_WO.p_WO[i]));
+    }
   for (int f : c.render_frames) {
     for (const EdgeSegment& e : prep.edges[static_cast<std::size_t>(c.render_pitch)][static_cast<std::size_t>(f)]) {
       const Eigen::Vector3d a = e.finite() ? e.p0 : Eigen::Vector3d(e.p0 - kRenderHalfLength * e.direction);

@@ -6,6 +6,8 @@
 
 #include "vibrissa/contact/contact_geometry.hpp"
 #include "vibrissa/contact/crossing.hpp"
+#include "vibrissa/objects/clearance.hpp"
+#include "vibrissa/solve/object_contact.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
@@ -53,6 +55,7 @@ ContactTracker::ContactTracker(const Whisker& whisker, const TrackerOptions& opt
 void ContactTracker::reset() {
   have_previous_ = false;
   edges_prev_.clear();
+  clearance_prev_.clear();
   forget_contact();
   frame_ = TrackedFrame{};
 }
@@ -160,6 +163,7 @@ const TrackedFrame& ContactTracker::step(const Placement& X, std::span<const Edg
     Solution& s = frame_.solution;
     switch (s.status) {
       case Status::converged:
+      case Status::second_contact:  // (object modes only)
         if (e.contains(e.coordinate(s.contact_point_W))) {
           record_converged(&e);
         } else {
@@ -179,6 +183,90 @@ const TrackedFrame& ContactTracker::step(const Placement& X, std::span<const Edg
   }
   frame_.edge = frame_.state == ContactState::free ? -1 : edge_;
   edges_prev_.assign(edges.begin(), edges.end());
+  std::swap(nodes_prev_W_, nodes_now_W_);
+  previous_X_ = X;
+  have_previous_ = true;
+  return frame_;
+}
+
+double ContactTracker::rest_clearance(const PlacedShape& object, const std::vector<Eigen::Vector3d>& nodes_W,
+                                      double* arc_length) const {
+  const std::vector<double> none;
+  // Only whether (and where) the whisker is inside matters: links clear by more than a link's length are skipped.
+  const Clearance c = clearance(object, nodes_W, whisker_.node_arc_lengths(),
+                                options_.thickness ? whisker_.node_radii() : none, 0.0);
+  if (arc_length) *arc_length = c.arc_length;
+  return c.gap;
+}
+
+const TrackedFrame& ContactTracker::step(const Placement& X, std::span<const PlacedShape> objects) {
+  if (options_.mode == ContactMode::contact_point)
+    throw std::invalid_argument("mode: contact_point needs tracked contact points (step_tracked), not a scene");
+  if (have_previous_ && objects.size() != clearance_prev_.size())
+    throw std::invalid_argument("objects: the scene has " + std::to_string(objects.size()) + " objects now but had " +
+                                std::to_string(clearance_prev_.size()) + " in the previous frame");
+  begin_frame();
+  place_rest_nodes(X);
+  thread_local std::vector<double> now, where;
+  now.assign(objects.size(), 0.0);
+  where.assign(objects.size(), 0.0);
+  for (std::size_t k = 0; k < objects.size(); ++k) now[k] = rest_clearance(objects[k], nodes_now_W_, &where[k]);
+  if (have_previous_) {
+    if (frame_.state == ContactState::pushed_past && now[static_cast<std::size_t>(edge_)] >= 0.0) {
+      frame_.state = ContactState::free;  // clear of the object it was pushed past
+      forget_contact();
+    }
+    if (frame_.state != ContactState::contact) {
+      // Onset: of the objects the whisker was clear of and is inside now, the one it is deepest in.
+      int hit = -1;
+      double deepest = 0.0;
+      for (std::size_t k = 0; k < objects.size(); ++k) {
+        const int ki = static_cast<int>(k);
+        if (frame_.state == ContactState::pushed_past && ki == edge_) continue;
+        if (!(now[k] < deepest && clearance_prev_[k] >= 0.0)) continue;
+        deepest = now[k];
+        hit = ki;
+      }
+      if (hit >= 0) {
+        forget_contact();
+        edge_ = hit;
+        const auto uk = static_cast<std::size_t>(hit);
+        hint_ = where[uk];
+        const Eigen::Vector3d p_B = whisker_.rest_point_B(where[uk]);
+        const Eigen::Vector3d v = X.to_world(p_B) - previous_X_.to_world(p_B);
+        approach_W_ = v.norm() > 0.0 ? std::optional<Eigen::Vector3d>(v.normalized()) : std::nullopt;
+        friction_start_W_ = objects[uk].nearest_W(X.to_world(p_B)).closest;
+        frame_.state = ContactState::contact;
+        frame_.onset = true;
+      }
+    }
+  }
+  frame_.approach_W.setZero();
+  if (frame_.state == ContactState::contact) {
+    const PlacedShape& o = objects[static_cast<std::size_t>(edge_)];
+    const ObjectContact object{o.shape, o.X_WO, options_.thickness};
+    frame_.approach_W = approach_W_.value_or(Eigen::Vector3d::Zero());
+    const LoadState* warm = warm_ ? &*warm_ : nullptr;
+    frame_.solution = options_.mode == ContactMode::frictional_edge
+                          ? solve_frictional_object(whisker_, X, object, options_.mu, *friction_start_W_, options_.solve,
+                                                    warm, approach_W_)
+                          : solve_object(whisker_, X, object, hint_, options_.solve, warm, approach_W_);
+    frame_.solved = true;
+    ++solves_;
+    Solution& s = frame_.solution;
+    if (s.status == Status::not_converged) ++failed_solves_;
+    switch (s.status) {
+      case Status::converged:
+      case Status::second_contact: record_converged(nullptr); break;
+      case Status::no_contact: frame_.state = ContactState::free; break;
+      case Status::slipped_off:
+      case Status::not_converged: frame_.state = ContactState::pushed_past; break;
+    }
+    s.contact_state = frame_.state;
+    if (frame_.state == ContactState::free) forget_contact();
+  }
+  frame_.edge = frame_.state == ContactState::free ? -1 : edge_;
+  clearance_prev_.assign(now.begin(), now.end());
   std::swap(nodes_prev_W_, nodes_now_W_);
   previous_X_ = X;
   have_previous_ = true;

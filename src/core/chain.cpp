@@ -3,9 +3,14 @@
 namespace vibrissa {
 
 template ContactKinematics<double> deflect<double>(const Whisker&, const V3<double>&, const V3<double>&, const double&,
-                                                   Eigen::Vector3d*);
+                                                   Eigen::Vector3d*, FollowerVectors<double>*);
 template ContactKinematics<Dual<3>> deflect<Dual<3>>(const Whisker&, const V3<Dual<3>>&, const V3<Dual<3>>&,
-                                                     const Dual<3>&, Eigen::Vector3d*);
+                                                     const Dual<3>&, Eigen::Vector3d*, FollowerVectors<Dual<3>>*);
+template ContactKinematics<double> deflect<double, true>(const Whisker&, const V3<double>&, const V3<double>&,
+                                                         const double&, Eigen::Vector3d*, FollowerVectors<double>*);
+template ContactKinematics<Dual<3>> deflect<Dual<3>, true>(const Whisker&, const V3<Dual<3>>&, const V3<Dual<3>>&,
+                                                           const Dual<3>&, Eigen::Vector3d*,
+                                                           FollowerVectors<Dual<3>>*);
 
 Eigen::Matrix3d joint_rotation_matrix(const Eigen::Vector3d& omega) {
   const V3<double> w(omega);

@@ -133,9 +133,9 @@ struct Carried {
   }
 };
 
-template <class T>
+template <class T, bool Follow = false>
 VIBRISSA_LANE_INLINE ContactKinematics<D> walk(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L,
-                                               const D& s) {
+                                               const D& s, FollowerVectors<D>* followers = nullptr) {
   using Coefficients = typename T::Coefficients;
   int k;
   double h0;
@@ -159,6 +159,12 @@ VIBRISSA_LANE_INLINE ContactKinematics<D> walk(const Whisker& w, const V3<D>& fo
   C.x = value(couple_L);
   C.dx = T::of(couple_L);
   const bool couple = !(is_zero(couple_L.x) && is_zero(couple_L.y) && is_zero(couple_L.z));
+  [[maybe_unused]] Carried<T> follow[2];
+  if constexpr (Follow)
+    for (std::size_t i = 0; i < 2; ++i) {
+      follow[i].x = value((*followers)[i]);
+      follow[i].dx = T::of((*followers)[i]);
+    }
   {  // load frame at s, then link k's rest frame: psi is parallel to kappa, so J_r(psi) dpsi = dpsi = dh kappa
     const V kappa(w.load_frame_curvature()[uk]);
     const V psi = scaled(h - 0.5 * w.link_lengths()[uk], kappa);
@@ -168,6 +174,8 @@ VIBRISSA_LANE_INLINE ContactKinematics<D> walk(const Whisker& w, const V3<D>& fo
     const T dtheta = T::outer(dh, kappa);
     F.turn(RE, dtheta);
     if (couple) C.turn(RE, dtheta);
+    if constexpr (Follow)
+      for (auto& v : follow) v.turn(RE, dtheta);
   }
   for (int j = k; j >= 0; --j) {
     const std::size_t u = static_cast<std::size_t>(j);
@@ -217,12 +225,20 @@ VIBRISSA_LANE_INLINE ContactKinematics<D> walk(const Whisker& w, const V3<D>& fo
     }
     F.turn(G, dtheta);
     if (couple) C.turn(G, dtheta);
+    if constexpr (Follow)
+      for (auto& v : follow) v.turn(G, dtheta);
   }
+  if constexpr (Follow)
+    for (std::size_t i = 0; i < 2; ++i) (*followers)[i] = T::pack(follow[i].x, follow[i].dx);
   return {T::pack(r.x, r.dx), T::pack(F.x, F.dx), T::pack(C.x, C.dx)};
 }
 
 ContactKinematics<D> walk_portable(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L, const D& s) {
   return walk<Each>(w, force_L, couple_L, s);
+}
+ContactKinematics<D> follow_portable(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L, const D& s,
+                                     FollowerVectors<D>& followers) {
+  return walk<Each, true>(w, force_L, couple_L, s, &followers);
 }
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -237,15 +253,25 @@ ContactKinematics<D> walk_portable(const Whisker& w, const V3<D>& force_L, const
                                                                           const V3<D>& couple_L, const D& s) {
   return walk<Lanes>(w, force_L, couple_L, s);
 }
+[[gnu::target("avx2")]] ContactKinematics<D> follow_avx2(const Whisker& w, const V3<D>& force_L,
+                                                         const V3<D>& couple_L, const D& s,
+                                                         FollowerVectors<D>& followers) {
+  return walk<Lanes, true>(w, force_L, couple_L, s, &followers);
+}
+[[gnu::target("avx2,avx512f,avx512vl")]] ContactKinematics<D> follow_avx512(const Whisker& w, const V3<D>& force_L,
+                                                                            const V3<D>& couple_L, const D& s,
+                                                                            FollowerVectors<D>& followers) {
+  return walk<Lanes, true>(w, force_L, couple_L, s, &followers);
+}
 #endif
 
 std::vector<detail::AnalyticBuild> builds_of_this_cpu() {
-  std::vector<detail::AnalyticBuild> out{{"portable", &walk_portable}};
+  std::vector<detail::AnalyticBuild> out{{"portable", &walk_portable, &follow_portable}};
 #ifdef VIBRISSA_LANES_X86
   __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx2")) out.push_back({"avx2", &walk_avx2});
+  if (__builtin_cpu_supports("avx2")) out.push_back({"avx2", &walk_avx2, &follow_avx2});
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl"))
-    out.push_back({"avx512", &walk_avx512});
+    out.push_back({"avx512", &walk_avx512, &follow_avx512});
 #endif
   return out;
 }
@@ -258,6 +284,13 @@ ContactKinematics<D> deflect_analytic(const Whisker& w, const V3<D>& force_L, co
   if (w.properties().scheme == Scheme::paper) return deflect_published<D>(w, force_L, couple_L, s);
   static const auto fastest = builds_of_this_cpu().back().walk;
   return fastest(w, force_L, couple_L, s);
+}
+
+ContactKinematics<D> deflect_analytic(const Whisker& w, const V3<D>& force_L, const V3<D>& couple_L, const D& s,
+                                      FollowerVectors<D>& followers) {
+  if (w.properties().scheme == Scheme::paper) return deflect_published<D>(w, force_L, couple_L, s, nullptr, &followers);
+  static const auto fastest = builds_of_this_cpu().back().follow;
+  return fastest(w, force_L, couple_L, s, followers);
 }
 
 }  // namespace vibrissa

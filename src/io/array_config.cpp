@@ -9,6 +9,7 @@
 #include "vibrissa/core/checks.hpp"
 #include "vibrissa/io/json_input.hpp"
 #include "vibrissa/io/morphology_table.hpp"
+#include "vibrissa/io/object_json.hpp"
 
 namespace vibrissa::io {
 
@@ -83,7 +84,7 @@ Protraction protraction_from(const json& j, const std::string& where, const Prot
   return p;
 }
 
-SceneObject object_from(const json& o, const std::string& where) {
+SceneObject object_from(const json& o, const std::string& where, const std::filesystem::path& base_dir) {
   if (!o.is_object()) fail(where + " must be an object");
   const std::string type = text(o, where, "type", "");
   const ObjectFrame frame = object_frame_from_string(text(o, where, "frame", "world"), (where + ".frame").c_str());
@@ -117,7 +118,11 @@ SceneObject object_from(const json& o, const std::string& where) {
     return make_prism(v, vec3(o, where, "axis", Eigen::Vector3d::UnitZ()), number(o, where, "length_mm", 0) * mm,
                       frame, where);
   }
-  fail(where + ".type must be 'peg', 'edge' or 'prism', got '" + type + "'");
+  if (type == "cylinder" || type == "plane" || type == "sphere" || type == "box" || type == "mesh") {
+    SceneObject s{type, frame, {}, shape_from_json(o, where, LengthKeys::millimetres, base_dir, {"frame"})};
+    return s;
+  }
+  fail(where + ".type must be 'peg', 'edge', 'prism', 'cylinder', 'plane', 'sphere', 'box' or 'mesh', got '" + type + "'");
 }
 
 }  // namespace
@@ -265,11 +270,12 @@ SimulationConfig array_config_from_json(const json& j, const std::filesystem::pa
   if (!objs.is_array() || objs.empty()) fail("objects must be a non-empty list");
   require_at_most(objs.size(), limits::max_edges, "objects: number of objects");
   for (std::size_t i = 0; i < objs.size(); ++i)
-    c.objects.push_back(object_from(objs[i], "objects[" + std::to_string(i) + "]"));
+    c.objects.push_back(object_from(objs[i], "objects[" + std::to_string(i) + "]", base_dir));
 
   // --- solver ---
   const json s = j.value("solver", json::object());
-  only_keys(s, "solver", {"mode", "mu", "links", "tolerance_m", "max_iterations"});
+  only_keys(s, "solver", {"mode", "mu", "links", "tolerance_m", "max_iterations", "thickness"});
+  if (s.contains("thickness")) c.thickness = io::json_bool(s.at("thickness"), "solver.thickness");
   c.mode = contact_mode_from_string(text(s, "solver", "mode", "edge"), "solver.mode");
   c.mu = number(s, "solver", "mu", 0.48);
   c.links = integer(s, "solver", "links", 100, 2, limits::max_links);

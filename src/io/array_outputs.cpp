@@ -17,6 +17,8 @@
 #include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/json_file.hpp"
 #include "vibrissa/io/nan_reasons.hpp"
+#include "vibrissa/io/object_json.hpp"
+#include "vibrissa/objects/mesh.hpp"
 
 namespace vibrissa::io {
 
@@ -180,6 +182,38 @@ LabelledData array_data(const ArrayResult& r, const SimulationConfig& c) {
                          .values = std::span(r.render_edges), .units = "m",
                          .long_name = "object edges as segments (infinite edges clipped to 60 mm), world frame",
                          .compress = true});
+  // The scene's surfaces (docs/objects.md), self-contained: each one's description (SI, its frame) and a mesh's
+  // vertices and triangles; render/object_poses places them at each rendered frame.
+  const std::size_t O = r.n_objects;
+  d.add_index_coordinate("render", "object", O, "surface object (group objects)");
+  d.add_index_coordinate("render", "pose", 12, "R_WO row by row, then p_WO");
+  d.variables.push_back({.name = "render/object_poses", .dims = {"frame", "object", "pose"}, .shape = {R, O, 12},
+                         .values = std::span(r.render_object_poses), .units = "m",
+                         .long_name = "pose of each surface object: rotation R_WO (row by row, 1) and origin p_WO [m]"});
+  std::vector<LabelledAttribute> object_attributes;
+  std::size_t i = 0;
+  for (const SceneObject& o : c.objects) {
+    if (!o.shape) continue;
+    const std::string group = "objects/" + std::to_string(i++);
+    nlohmann::json description = shape_to_json(*o.shape);
+    description["frame"] = std::string(to_string(o.frame));
+    object_attributes.push_back({group, "description", description.dump()});
+    if (const auto* mesh = dynamic_cast<const Mesh*>(o.shape.get())) {
+      std::vector<double> v;
+      std::vector<int> t;
+      for (const auto& p : mesh->vertices()) v.insert(v.end(), {p.x(), p.y(), p.z()});
+      for (const auto& f : mesh->triangles()) t.insert(t.end(), {f[0], f[1], f[2]});
+      d.add_index_coordinate(group, "vertex", mesh->vertices().size(), "mesh vertex");
+      d.add_index_coordinate(group, "corner", 3, "corner of the triangle");
+      d.add_index_coordinate(group, "triangle", mesh->triangles().size(), "mesh triangle");
+      d.add_owned({.name = group + "/vertices", .dims = {"vertex", "component"}, .shape = {mesh->vertices().size(), 3},
+                   .units = "m", .long_name = "mesh vertices in the object's frame", .compress = true},
+                  std::move(v));
+      d.add_owned({.name = group + "/triangles", .dims = {"triangle", "corner"}, .shape = {mesh->triangles().size(), 3},
+                   .units = "1", .long_name = "vertex indices of each triangle", .compress = true},
+                  std::move(t));
+    }
+  }
   d.attributes = {{"", "layout", "[pitch][whisker][frame]"},
                   {"", "morphology", c.morphology.source},
                   {"", "mode", std::string(to_string(c.mode))},
@@ -189,6 +223,7 @@ LabelledData array_data(const ArrayResult& r, const SimulationConfig& c) {
                   {"", "state_codes", contact_state_code_table()},
                   {"", "solver_status_codes", status_code_table()},
                   {"render", "pitch_index", static_cast<double>(c.render_pitch)}};
+  d.attributes.insert(d.attributes.end(), object_attributes.begin(), object_attributes.end());
   return d;
 }
 

@@ -8,6 +8,8 @@
 #include "vibrissa/core/checks.hpp"
 #include "vibrissa/core/plausibility.hpp"
 #include "vibrissa/io/json_input.hpp"
+#include "vibrissa/io/object_json.hpp"
+#include "vibrissa/solve/object_contact.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
@@ -167,7 +169,7 @@ Whisker whisker_from_json(const json& j) {
 
 Load load_from_json(const json& j) {
   if (!j.is_object() || !j.contains("mode"))
-    fail("load.mode is required (force, dead_load, point, edge, frictional_edge, base_wrench)");
+    fail("load.mode is required (force, dead_load, point, edge, frictional_edge, base_wrench, object)");
   const json& mode = j.at("mode");
   if (mode == "force") {
     reject_unknown(j, "load", {"mode", "force", "arc_length", "angle"});
@@ -219,7 +221,25 @@ Load load_from_json(const json& j) {
     if (j.contains("noise")) l.noise_covariance = noise_from_json(j.at("noise"), l.signals.size());
     return l;
   }
-  fail("load.mode must be one of force, dead_load, point, edge, frictional_edge, base_wrench; got " + io::describe(mode));
+  if (mode == "object") {
+    reject_unknown(j, "load",
+                   {"mode", "object", "thickness", "friction_coefficient", "previous_contact", "arc_length_hint", "approach"});
+    if (!j.contains("object")) fail("load.object is required in object mode");
+    ObjectLoad l;
+    l.shape = io::shape_from_json(j.at("object"), "load.object", io::LengthKeys::metres);
+    if (j.contains("thickness")) l.thickness = io::json_bool(j.at("thickness"), "load.thickness");
+    if (j.contains("friction_coefficient")) {
+      l.friction_coefficient = number(j.at("friction_coefficient"), "load.friction_coefficient");
+      if (!j.contains("previous_contact"))
+        fail("load.previous_contact is required with a friction_coefficient (where the contact was on the object)");
+    }
+    if (j.contains("previous_contact")) l.previous_contact = vec3(j.at("previous_contact"), "load.previous_contact");
+    if (j.contains("arc_length_hint")) l.arc_length_hint = number(j.at("arc_length_hint"), "load.arc_length_hint");
+    if (j.contains("approach")) l.approach = vec3(j.at("approach"), "load.approach");
+    return l;
+  }
+  fail("load.mode must be one of force, dead_load, point, edge, frictional_edge, base_wrench, object; got " +
+       io::describe(mode));
 }
 
 Case case_from_json(const json& j) {
@@ -256,6 +276,13 @@ Solution solve_case(const Case& c) {
           return solve_edge(w, l.edge, l.arc_length_hint, c.options, nullptr, l.approach);
         else if constexpr (std::is_same_v<T, BaseWrenchLoad>)
           return solve_base_wrench(w, l.force, l.moment, base_wrench_options(l, c.options)).solution;
+        else if constexpr (std::is_same_v<T, ObjectLoad>) {
+          const ObjectContact o{l.shape.get(), {}, l.thickness};
+          if (l.friction_coefficient)
+            return solve_frictional_object(w, w.placement(), o, *l.friction_coefficient, *l.previous_contact, c.options,
+                                           nullptr, l.approach);
+          return solve_object(w, w.placement(), o, l.arc_length_hint, c.options, nullptr, l.approach);
+        }
         else
           return solve_frictional_edge(w, l.edge, l.friction_coefficient, l.previous_contact, c.options, nullptr,
                                        l.approach);
@@ -291,6 +318,19 @@ json solution_to_json(const Solution& s) {
   for (const Root& r : s.roots)
     roots.push_back({{"arc_length", r.arc_length}, {"force", r.force_magnitude}, {"residual", r.residual}});
   j["roots"] = std::move(roots);
+  if (s.surface) {
+    const SurfaceContact& c = *s.surface;
+    j["surface"] = {{"normal_W", to_json(c.normal_W)},
+                    {"friction_direction_W", to_json(c.friction_direction_W)},
+                    {"tip", c.tip},
+                    {"feature", std::string(to_string(c.feature))},
+                    {"friction_force", c.friction_force},
+                    {"clearance", c.clearance},
+                    {"clearance_arc_length", c.clearance_arc_length}};
+  } else {
+    j["surface"] = nullptr;
+  }
+  j["second_contact_arc_length"] = s.second_contact_arc_length ? json(*s.second_contact_arc_length) : json(nullptr);
   j["residual"] = s.residual;
   j["iterations"] = s.iterations;
   json shape = json::array();
@@ -333,6 +373,7 @@ json base_wrench_to_json(const BaseWrenchResult& r) {
 
 json case_result_to_json(const Case& c, const Solution& s) {
   json j = solution_to_json(s);
+  if (const auto* l = std::get_if<ObjectLoad>(&c.load)) j["object"] = io::shape_to_json(*l->shape);
   j["warnings"] = plausibility_warnings(c.whisker);
   return j;
 }

@@ -22,7 +22,8 @@ std::string table(std::initializer_list<Enum> values, std::string prefix = {}) {
 }  // namespace
 
 std::string status_code_table() {
-  return table({Status::converged, Status::no_contact, Status::slipped_off, Status::not_converged},
+  return table({Status::converged, Status::no_contact, Status::slipped_off, Status::not_converged,
+                Status::second_contact},
                std::to_string(kNotSolvedCode) + " not_in_contact");
 }
 

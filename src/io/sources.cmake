@@ -21,5 +21,6 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/trial_outputs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/trial_results.cpp
   ${CMAKE_CURRENT_LIST_DIR}/morphology_table.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/object_json.cpp
   ${CMAKE_CURRENT_LIST_DIR}/array_config.cpp
   ${CMAKE_CURRENT_LIST_DIR}/array_outputs.cpp)

@@ -17,8 +17,15 @@ auto components(Kinematics& k) {
 
 }  // namespace
 
+namespace {
+/// A load the record's normal-force evaluations can hold: no axial force, no couple.
+bool normal_load(const LoadState& s) {
+  return s.force_x == 0.0 && s.couple_x == 0.0 && s.couple_y == 0.0 && s.couple_z == 0.0;
+}
+}  // namespace
+
 std::optional<ContactKinematics<double>> ContactEvaluations::at(const LoadState& state) const {
-  if (state.force_x != 0.0) return std::nullopt;
+  if (!normal_load(state)) return std::nullopt;
   return at_load(Eigen::Vector3d(state.force_y, state.force_z, state.arc_length));
 }
 
@@ -64,7 +71,7 @@ Eigen::Vector3d ContactEvaluations::start_at(const Whisker& w, const Scales& sc,
   const LoadSensitivity& c = state.sensitivity;
   const Eigen::Vector3d u(c.unknowns[0], c.unknowns[1], c.unknowns[2]);
   const Eigen::Vector3d load = sc.load(u);
-  if (c.whisker == 0 || c.whisker != w.mechanics_fingerprint() || state.force_x != 0.0 ||
+  if (c.whisker == 0 || c.whisker != w.mechanics_fingerprint() || !normal_load(state) ||
       load != Eigen::Vector3d(state.force_y, state.force_z, state.arc_length))
     return unknowns_from_state(state, sc);
   const auto to = components(jacobian_);
@@ -80,7 +87,7 @@ Eigen::Vector3d ContactEvaluations::start_at(const Whisker& w, const Scales& sc,
 
 LoadSensitivity ContactEvaluations::sensitivity_at(const Whisker& w, const LoadState& state) const {
   LoadSensitivity out;
-  if (state.force_x != 0.0) return out;
+  if (!normal_load(state)) return out;
   const Eigen::Vector3d load(state.force_y, state.force_z, state.arc_length);
   std::optional<ContactKinematics<Dual<3>>> k;
   Eigen::Vector3d u;

@@ -47,12 +47,13 @@ Workspace& workspace() {
 /// Deflected nodes in B into ws.nodes_B.
 void shape_B(const Whisker& w, const LoadState& state, Workspace& ws) {
   const V3<double> F_L(state.force_x, state.force_y, state.force_z);
+  const V3<double> C_L(state.couple_x, state.couple_y, state.couple_z);
   if (w.properties().scheme == Scheme::paper) {
-    published_nodes_B(w, F_L, V3<double>(0, 0, 0), state.arc_length, ws.nodes_B);
+    published_nodes_B(w, F_L, C_L, state.arc_length, ws.nodes_B);
     return;
   }
   ws.omega.resize(static_cast<std::size_t>(w.links()));
-  deflect<double>(w, F_L, V3<double>(0, 0, 0), state.arc_length, ws.omega.data());
+  deflect<double>(w, F_L, C_L, state.arc_length, ws.omega.data());
   deflected_nodes_B(w, ws.omega.data(), ws.nodes_B);
 }
 }  // namespace
@@ -86,11 +87,13 @@ void fill_solution(const Whisker& w, const Placement& X, const LoadState& state,
   if (!known) {
     if (walk_for_shape) omega.resize(static_cast<std::size_t>(w.links()));
     const V3<double> F_L(state.force_x, state.force_y, state.force_z);
-    known = deflect<double>(w, F_L, V3<double>(0, 0, 0), state.arc_length, walk_for_shape ? omega.data() : nullptr);
+    const V3<double> C_L(state.couple_x, state.couple_y, state.couple_z);
+    known = deflect<double>(w, F_L, C_L, state.arc_length, walk_for_shape ? omega.data() : nullptr);
   }
   const ContactKinematics<double>& c = *known;
   const Eigen::Vector3d p_B = to_eigen(c.p_contact_B), F_B = to_eigen(c.force_B);
-  const Eigen::Vector3d M_B = p_B.cross(F_B);
+  Eigen::Vector3d M_B = p_B.cross(F_B);
+  if (state.couple_x != 0.0 || state.couple_y != 0.0 || state.couple_z != 0.0) M_B += to_eigen(c.couple_B);
   out.state = state;
   if (evaluated && state.sensitivity.whisker == 0)
     out.state.sensitivity = evaluated->sensitivity_at(w, state);
@@ -138,7 +141,8 @@ void set_status(Solution& out, Status status, std::string_view message) {
   out.status = status;
   out.message = message;
   switch (status) {
-    case Status::converged: out.contact_state = ContactState::contact; break;
+    case Status::converged:
+    case Status::second_contact: out.contact_state = ContactState::contact; break;
     case Status::slipped_off: out.contact_state = ContactState::pushed_past; break;
     case Status::no_contact:
     case Status::not_converged: out.contact_state = ContactState::free; break;

@@ -21,7 +21,13 @@ bool all_finite(const Solution& s) {
             s.contact_point_W.allFinite() && s.force_W.allFinite() && s.moment_W.allFinite() && wf.force.allFinite() &&
             wf.moment.allFinite() && std::isfinite(wf.FT) && std::isfinite(wf.MB) && std::isfinite(wf.FD) &&
             std::isfinite(wf.MD) && std::isfinite(s.residual) && std::isfinite(s.state.force_x) &&
-            std::isfinite(s.state.force_y) && std::isfinite(s.state.force_z) && std::isfinite(s.state.arc_length);
+            std::isfinite(s.state.force_y) && std::isfinite(s.state.force_z) && std::isfinite(s.state.arc_length) &&
+            std::isfinite(s.state.couple_x) && std::isfinite(s.state.couple_y) && std::isfinite(s.state.couple_z);
+  if (s.surface)
+    ok = ok && s.surface->normal_W.allFinite() && s.surface->friction_direction_W.allFinite() &&
+         std::isfinite(s.surface->friction_force) && std::isfinite(s.surface->clearance) &&
+         std::isfinite(s.surface->clearance_arc_length);
+  if (s.second_contact_arc_length) ok = ok && std::isfinite(*s.second_contact_arc_length);
   for (const auto& v : {s.normal_force, s.edge_force, s.other_root_arc_length}) ok = ok && (!v || std::isfinite(*v));
   for (const auto& p : s.shape_W) ok = ok && p.allFinite();
   return ok;

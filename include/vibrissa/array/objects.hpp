@@ -10,8 +10,11 @@
 
 #include <Eigen/Core>
 
+#include <memory>
+
 #include "vibrissa/array/head.hpp"
 #include "vibrissa/contact/edge_segment.hpp"
+#include "vibrissa/objects/shape.hpp"
 
 namespace vibrissa::array {
 
@@ -20,10 +23,16 @@ std::string_view to_string(ObjectFrame frame);
 ObjectFrame object_frame_from_string(std::string_view name, const char* field);
 
 struct SceneObject {
-  std::string kind;  ///< "edge", "peg" or "prism"
+  std::string kind;  ///< "edge", "peg" or "prism"; or a surface: "cylinder", "plane", "sphere", "box", "mesh"
   ObjectFrame frame = ObjectFrame::world;
-  std::vector<EdgeSegment> edges;  ///< in `frame`
+  std::vector<EdgeSegment> edges;  ///< in `frame` (edge kinds)
+  std::shared_ptr<const Shape> shape;  ///< surfaces (docs/objects.md), parameters in `frame`
 };
+
+/// Whether the scene's objects are surfaces (object modes) rather than edges; a scene is one or the other.
+bool scene_of_surfaces(const std::vector<SceneObject>& objects);
+/// Every surface where it is for a head pose (world objects as given, head objects moved with the head).
+std::vector<PlacedShape> shapes_in_world(const std::vector<SceneObject>& objects, const HeadPose& head);
 
 /// A straight edge through `point` along `direction` (normalised here); infinite unless `length` is finite,
 /// in which case it runs from `point` for `length`. Throws for a zero direction or a non-positive length.

@@ -35,6 +35,7 @@ struct SimulationConfig {
   int links = 100;      ///< links per whisker (spec §2.1)
   double tolerance = 1e-10;  ///< solver contact residual [m]
   int max_iterations = 100;
+  bool thickness = true;  ///< surfaces: the whisker's surface touches them (docs/objects.md)
   std::vector<int> render_frames;  ///< frames whose rest and deflected shapes are kept (for the animation)
   int render_pitch = 0;            ///< index into `pitches` of the rendered run
   int threads = 0;                 ///< OpenMP threads (0: all)
@@ -58,8 +59,8 @@ struct ArrayResult {
   std::vector<double> force_W, moment_W;   ///< at the base, world [N], [N·m] (x3)
   std::vector<double> force_B, moment_B;   ///< at the base, whisker frame (Fx, Fy, Fz), (Mx, My, Mz) (x3)
   std::vector<double> FT, MB, FD, MD;      ///< spec §2.4 [N], [N·m], [rad], [rad]
-  std::vector<double> normal_force;        ///< F_N, force normal to the edge [N]
-  std::vector<double> edge_force;          ///< force along the edge [N] (non-zero only with friction)
+  std::vector<double> normal_force;        ///< F_N, force normal to the edge [N] (surfaces: F . n)
+  std::vector<double> edge_force;          ///< force along the edge [N] (non-zero only with friction; surfaces: F . b)
   std::vector<double> z_edge;              ///< contact position along the edge from its p0 [m]
   std::vector<double> z_error;             ///< eq. (7) bound for `mu` [m]
 
@@ -74,6 +75,10 @@ struct ArrayResult {
   /// Edges at each rendered frame, [render][edge][2 ends][3] [m] (infinite edges clipped to ±60 mm).
   std::vector<float> render_edges;
   std::size_t n_edges = 0;
+  /// Surfaces (scenes of objects): each object's pose at each rendered frame, [render][object][12] (R_WO row by
+  /// row, then p_WO [m]); the objects themselves are the config's (io::shape_to_json).
+  std::vector<float> render_object_poses;
+  std::size_t n_objects = 0;
 
   std::size_t solves = 0;          ///< edge solves performed
   std::size_t failed_solves = 0;   ///< solves that ended not_converged (counted as pushed past)

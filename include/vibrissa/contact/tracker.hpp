@@ -32,6 +32,7 @@
 
 #include "vibrissa/contact/edge_segment.hpp"
 #include "vibrissa/core/whisker.hpp"
+#include "vibrissa/objects/shape.hpp"
 #include "vibrissa/solve/options.hpp"
 #include "vibrissa/solve/solution.hpp"
 
@@ -44,9 +45,12 @@ std::string_view to_string(ContactMode mode);
 ContactMode contact_mode_from_string(std::string_view name, const char* field = "mode");
 
 struct TrackerOptions {
+  /// edge: frictionless; frictional_edge: Coulomb with `mu`. Against objects (step with PlacedShape) the same
+  /// two are the frictionless and frictional object modes.
   ContactMode mode = ContactMode::edge;
   double mu = 0.0;     ///< Coulomb friction coefficient (frictional_edge) [-]
   SolveOptions solve;  ///< per-frame solves (find_other_roots is not used per frame)
+  bool thickness = true;  ///< objects: the whisker's surface touches them (ObjectContact::thickness)
 };
 void validate(const TrackerOptions& options);
 
@@ -84,6 +88,15 @@ class ContactTracker {
   /// has nothing to cross from and is free. Edge modes only.
   const TrackedFrame& step(const Placement& X_WB, std::span<const EdgeSegment> edges);
 
+  /// A simulated frame against objects (docs/objects.md, "Tracking"), in world coordinates at this frame (the
+  /// same objects every frame; they may move). Onset when the rest whisker enters an object since the last frame
+  /// (its clearance falls below zero; of several, the one it is deepest in); the approach is the motion of the
+  /// rest point deepest in it. Frictionless or Coulomb object mode
+  /// per frame; converged and second_contact keep the contact, no_contact releases it, slipped_off and
+  /// not_converged push it past; pushed_past -> free once the rest whisker is clear of that object again.
+  /// TrackedFrame::edge is the object's index; edge_coordinate stays NaN.
+  const TrackedFrame& step(const Placement& X_WB, std::span<const PlacedShape> objects);
+
   /// A tracked frame: contact when `input.in_contact`. `edge` is the touched edge (required in the edge
   /// modes; in contact-point mode optional, to split the force into normal and edge components).
   const TrackedFrame& step_tracked(const Placement& X_WB, const EdgeSegment* edge, const TrackedInput& input);
@@ -104,6 +117,8 @@ class ContactTracker {
   void solve_edge_frame(const Placement& X_WB, const EdgeSegment& e, const std::optional<Eigen::Vector3d>& approach_W,
                         std::optional<double> hint);
   void record_converged(const EdgeSegment* e);
+  [[nodiscard]] double rest_clearance(const PlacedShape& object, const std::vector<Eigen::Vector3d>& nodes_W,
+                                      double* arc_length = nullptr) const;
 
   const Whisker& whisker_;
   TrackerOptions options_;
@@ -113,6 +128,7 @@ class ContactTracker {
   Placement previous_X_;
   std::vector<Eigen::Vector3d> nodes_prev_W_, nodes_now_W_;  // rest nodes, sized once
   std::vector<EdgeSegment> edges_prev_;                      // capacity kept across frames
+  std::vector<double> clearance_prev_;                       // objects: the rest whisker's clearance last frame
 
   // History of the current contact.
   int edge_ = -1;

@@ -32,10 +32,13 @@ namespace vibrissa {
 /// rotation vector in rest axes, and the joint law (eqs. (1), (3)) holds there with the compliance
 /// R_j K_j R_j^T (cross products and rotations commute with R_j). No rest rotation is applied in the walk;
 /// at the base the rest axes are B's, so the carried vectors come out in B.
-template <class S>
+/// With Follow, `followers` (vectors fixed in the load frame, given in it) are turned with the load and come out
+/// in B (contact_kinematics.hpp); they take no part in the mechanics, so every other output is the same.
+template <class S, bool Follow = false>
 ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>& couple_L, const S& s,
-                             Eigen::Vector3d* omega_out = nullptr) {
-  if (w.properties().scheme == Scheme::paper) return deflect_published<S>(w, force_L, couple_L, s);
+                             Eigen::Vector3d* omega_out = nullptr, FollowerVectors<S>* followers = nullptr) {
+  if (w.properties().scheme == Scheme::paper)
+    return deflect_published<S>(w, force_L, couple_L, s, nullptr, Follow ? followers : nullptr);
   int k;
   double h0;
   w.locate(value_of(s), k, h0);
@@ -61,6 +64,8 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
     r = V3<S>(h * tangent.x(), h * tangent.y(), h * tangent.z());
     F = RE * force_L;
     C = couple ? RE * couple_L : V3<S>(S(0.0), S(0.0), S(0.0));
+    if constexpr (Follow)
+      for (auto& v : *followers) v = RE * v;
   }
   if (omega_out)
     for (int j = k + 1; j < w.links(); ++j) omega_out[j].setZero();
@@ -105,6 +110,8 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
     r = j > 0 ? tr.turned(a, b, V3<S>(link_B[u - 1])) : tr.turned(a, b);
     F = detail::RotationTerms<S>(omega, t2, F).turned(a, b);
     if (couple) C = detail::RotationTerms<S>(omega, t2, C).turned(a, b);
+    if constexpr (Follow)
+      for (auto& v : *followers) v = detail::RotationTerms<S>(omega, t2, v).turned(a, b);
   }
   return {r, F, C};
 }
@@ -112,9 +119,16 @@ ContactKinematics<S> deflect(const Whisker& w, const V3<S>& force_L, const V3<S>
 // One instantiation of each scalar's walk, in the library (src/core/chain.cpp): callers and benchmarks run the
 // same code.
 extern template ContactKinematics<double> deflect<double>(const Whisker&, const V3<double>&, const V3<double>&,
-                                                          const double&, Eigen::Vector3d*);
+                                                          const double&, Eigen::Vector3d*, FollowerVectors<double>*);
 extern template ContactKinematics<Dual<3>> deflect<Dual<3>>(const Whisker&, const V3<Dual<3>>&,
-                                                            const V3<Dual<3>>&, const Dual<3>&, Eigen::Vector3d*);
+                                                            const V3<Dual<3>>&, const Dual<3>&, Eigen::Vector3d*,
+                                                            FollowerVectors<Dual<3>>*);
+extern template ContactKinematics<double> deflect<double, true>(const Whisker&, const V3<double>&, const V3<double>&,
+                                                                const double&, Eigen::Vector3d*,
+                                                                FollowerVectors<double>*);
+extern template ContactKinematics<Dual<3>> deflect<Dual<3>, true>(const Whisker&, const V3<Dual<3>>&,
+                                                                  const V3<Dual<3>>&, const Dual<3>&,
+                                                                  Eigen::Vector3d*, FollowerVectors<Dual<3>>*);
 
 /// Rotation matrix exp([omega]x) of a joint rotation vector in its link's frame (as deflect() records them in
 /// omega_out; the walk itself turns by the same rotation in rest axes).

@@ -24,12 +24,19 @@ namespace vibrissa {
 /// The paper scheme falls back to deflect_published<Dual<3>>.
 ContactKinematics<Dual<3>> deflect_analytic(const Whisker& w, const V3<Dual<3>>& force_L,
                                             const V3<Dual<3>>& couple_L, const Dual<3>& s);
+/// The same carrying `followers` (deflect<S, true>): they come out in B with their derivatives.
+ContactKinematics<Dual<3>> deflect_analytic(const Whisker& w, const V3<Dual<3>>& force_L,
+                                            const V3<Dual<3>>& couple_L, const Dual<3>& s,
+                                            FollowerVectors<Dual<3>>& followers);
 
 namespace detail {
 /// One build of deflect_analytic()'s second-order walk (no paper-scheme fallback).
 struct AnalyticBuild {
   const char* name;
   ContactKinematics<Dual<3>> (*walk)(const Whisker&, const V3<Dual<3>>&, const V3<Dual<3>>&, const Dual<3>&);
+  /// The same walk carrying follower vectors.
+  ContactKinematics<Dual<3>> (*follow)(const Whisker&, const V3<Dual<3>>&, const V3<Dual<3>>&, const Dual<3>&,
+                                       FollowerVectors<Dual<3>>&);
 };
 /// The builds this CPU runs: "portable" (one vector per derivative direction), then on x86 with AVX2 "avx2"
 /// (the three directions in vector lanes) and with AVX-512 "avx512" (the same code compiled for it).
@@ -42,6 +49,13 @@ template <class S>
 ContactKinematics<S> deflect_for_solve(const Whisker& w, const V3<S>& force_L, const V3<S>& couple_L, const S& s) {
   if constexpr (std::is_same_v<S, Dual<3>>) return deflect_analytic(w, force_L, couple_L, s);
   else return deflect<S>(w, force_L, couple_L, s);
+}
+/// deflect_for_solve() carrying follower vectors (the object solves' load frame).
+template <class S>
+ContactKinematics<S> deflect_for_solve(const Whisker& w, const V3<S>& force_L, const V3<S>& couple_L, const S& s,
+                                       FollowerVectors<S>& followers) {
+  if constexpr (std::is_same_v<S, Dual<3>>) return deflect_analytic(w, force_L, couple_L, s, followers);
+  else return deflect<S, true>(w, force_L, couple_L, s, nullptr, &followers);
 }
 
 }  // namespace vibrissa

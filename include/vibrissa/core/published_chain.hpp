@@ -71,10 +71,11 @@ struct PublishedJoints {
 };
 
 /// Deflects the published chain under a follower force and couple at s (components in the frame
-/// published_load_frame(first new link, loaded link) taken with B as the reference frame).
+/// published_load_frame(first new link, loaded link) taken with B as the reference frame). `followers`, if
+/// given, are vectors in that frame, turned with the load and returned in B (contact_kinematics.hpp).
 template <class S>
 ContactKinematics<S> deflect_published(const Whisker& w, const V3<S>& force_L, const V3<S>& couple_L, const S& s,
-                                       PublishedJoints* record = nullptr) {
+                                       PublishedJoints* record = nullptr, FollowerVectors<S>* followers = nullptr) {
   using std::cos;
   using std::sin;
   using std::sqrt;
@@ -94,8 +95,13 @@ ContactKinematics<S> deflect_published(const Whisker& w, const V3<S>& force_L, c
   V3<S> n_next = node(m - 1), n_j = node(m - 2);
   const V3<S> loaded = n_next - n_j;
   const Axes<S> frame = published_load_frame(node(1) - node(0), loaded);
-  // v[0] = contact point relative to node j, v[1] = F, v[2] = C.
-  V3<S> v[3] = {n_next - n_j, frame * force_L, frame * couple_L};
+  // v[0] = contact point relative to node j, v[1] = F, v[2] = C, then the follower vectors if any.
+  V3<S> v[5] = {n_next - n_j, frame * force_L, frame * couple_L, V3<S>(), V3<S>()};
+  const int carried = followers ? 5 : 3;
+  if (followers) {
+    v[3] = frame * (*followers)[0];
+    v[4] = frame * (*followers)[1];
+  }
   if (record) {
     record->node_B.assign(static_cast<std::size_t>(m - 1), Eigen::Vector3d::Zero());
     record->rotation_B.assign(static_cast<std::size_t>(m - 1), Eigen::Matrix3d::Identity());
@@ -130,7 +136,7 @@ ContactKinematics<S> deflect_published(const Whisker& w, const V3<S>& force_L, c
         const V3<S> twisted = ct * x + st * cross(t, x) + ((S(1.0) - ct) * dot(t, x)) * t;
         return detail::rotate(bend, a, b, twisted);
       };
-      for (auto& x : v) x = turn(x);
+      for (int i = 0; i < carried; ++i) v[i] = turn(v[i]);
       if (record) {
         Eigen::Matrix3d R;
         for (int c = 0; c < 3; ++c) R.col(c) = val(turn(V3<S>(Eigen::Vector3d(Eigen::Vector3d::Unit(c)))));
@@ -141,6 +147,7 @@ ContactKinematics<S> deflect_published(const Whisker& w, const V3<S>& force_L, c
     n_next = n_j;
     n_j = n_prev;
   }
+  if (followers) *followers = {v[3], v[4]};
   return {v[0], v[1], v[2]};
 }
 

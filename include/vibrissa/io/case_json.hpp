@@ -1,6 +1,7 @@
 #pragma once
 // The `vibrissa solve` JSON contract (docs/formats.md): a case (whisker + load) in, a result out, SI units.
 // Readers reject unknown fields and name the offending field and value in std::invalid_argument.
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -10,6 +11,7 @@
 
 #include "vibrissa/core/whisker.hpp"
 #include "vibrissa/io/json_file.hpp"
+#include "vibrissa/objects/shape.hpp"
 #include "vibrissa/solve/base_wrench.hpp"
 #include "vibrissa/solve/options.hpp"
 #include "vibrissa/solve/solution.hpp"
@@ -46,7 +48,16 @@ struct BaseWrenchLoad {
   SignalSet signals = SignalSet::all();
   Eigen::MatrixXd noise_covariance;  ///< empty: the default relative noise
 };
-using Load = std::variant<ForceLoad, DeadLoad, PointLoad, EdgeLoad, FrictionalEdgeLoad, BaseWrenchLoad>;
+/// An object (docs/objects.md): frictionless, or with friction_coefficient and previous_contact.
+struct ObjectLoad {
+  std::shared_ptr<const Shape> shape;
+  bool thickness = true;
+  std::optional<double> friction_coefficient;
+  std::optional<Eigen::Vector3d> previous_contact;
+  std::optional<double> arc_length_hint;
+  std::optional<Eigen::Vector3d> approach;
+};
+using Load = std::variant<ForceLoad, DeadLoad, PointLoad, EdgeLoad, FrictionalEdgeLoad, BaseWrenchLoad, ObjectLoad>;
 
 struct Case {
   Whisker whisker;

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "vibrissa/objects/shape.hpp"
 #include "vibrissa/solve/status.hpp"
 
 namespace vibrissa {
@@ -33,10 +34,13 @@ struct LoadSensitivity {
 /// Unknowns of a contact solve: force components in the frame of the loaded link (x along the link) and
 /// the arc length of contact. Pass a previous solution's state to warm-start the next frame.
 struct LoadState {
-  double force_x = 0.0;  ///< axial component [N] (zero for the model's normal load)
+  double force_x = 0.0;  ///< axial component [N] (zero for the model's normal load; object contacts: see docs/objects.md)
   double force_y = 0.0;  ///< [N]
   double force_z = 0.0;  ///< [N]
   double arc_length = 0.0;  ///< [m]
+  /// Couple in the same frame [N·m]: zero except where friction acts on the whisker's surface, off its centre
+  /// line (frictional object contacts with the whisker's thickness: a twist about the whisker).
+  double couple_x = 0.0, couple_y = 0.0, couple_z = 0.0;
   LoadSensitivity sensitivity;  ///< set by the solve that produced this state (speeds up the next warm start)
 };
 
@@ -67,6 +71,20 @@ enum class FrictionState : std::int8_t {
 };
 std::string_view to_string(FrictionState state);
 
+/// Where an object touches the whisker (object modes, docs/objects.md), world frame.
+struct SurfaceContact {
+  Eigen::Vector3d normal_W = Eigen::Vector3d::Zero();  ///< the object's outward unit normal at the contact
+  /// Unit direction of friction: in the tangent plane, across the whisker (n x t normalised)
+  Eigen::Vector3d friction_direction_W = Eigen::Vector3d::Zero();
+  bool tip = false;  ///< the contact is at the whisker's tip (s = L), not on its side
+  SurfaceFeature feature = SurfaceFeature::face;  ///< which part of the object
+  double friction_force = 0.0;  ///< F . friction_direction [N] (0 without friction)
+  /// Smallest gap between the whisker's surface (its centre line when thickness is off) and the object over the
+  /// whole deflected whisker, and where [m]: ~0 at the contact; below -tolerance the status is second_contact.
+  double clearance = 0.0;
+  double clearance_arc_length = 0.0;
+};
+
 /// One root of a contact solve (an equilibrium through the same target).
 struct Root {
   double arc_length = 0.0;       ///< s [m]
@@ -90,7 +108,7 @@ struct Solution {
   /// Moment of the contact force about the base, world [N·m].
   Eigen::Vector3d moment_W = Eigen::Vector3d::Zero();
   WhiskerFrameSignals whisker_frame;
-  std::optional<double> normal_force;  ///< component of F normal to the edge [N] (edge modes)
+  std::optional<double> normal_force;  ///< component of F normal to the edge [N] (edge modes); F . n (object modes)
   std::optional<double> edge_force;    ///< component of F along the edge direction [N] (edge modes)
   double residual = 0.0;               ///< final residual [m]
   int iterations = 0;
@@ -99,6 +117,8 @@ struct Solution {
   /// Every distinct root the solve found, by arc length (point mode with a hint or find_other_roots).
   std::vector<Root> roots;
   LoadState state;                     ///< the solved unknowns, for warm starts
+  std::optional<SurfaceContact> surface;  ///< object modes: normal, friction direction, tip, clearance
+  std::optional<double> second_contact_arc_length;  ///< status second_contact: where the whisker enters the object [m]
 };
 
 }  // namespace vibrissa

@@ -9,6 +9,9 @@ enum class Status {
   no_contact,     ///< the object is out of reach, or the whisker is not pressed against it
   slipped_off,    ///< equilibrium would need the contact beyond the tip
   not_converged,  ///< the iteration limit was reached or the solver stalled
+  /// object modes: the single-contact equilibrium would put another part of the whisker inside the object
+  /// (Solution::second_contact_arc_length says where); its loads are reported, flagged by this status
+  second_contact,
 };
 
 std::string_view to_string(Status status);

@@ -1,0 +1,30 @@
+#pragma once
+// How far a whisker is from an object (docs/objects.md, "Clearance and first touch"): its links are straight
+// segments whose radius varies linearly from node to node (cone frusta; with no radii, the centre line), and
+// the gap of a point is the object's signed distance minus the radius there. Used to find where a placed rest
+// whisker first meets an object (contact onset), and to check a deflected whisker nowhere enters it.
+#include <limits>
+#include <span>
+
+#include <Eigen/Core>
+
+#include "vibrissa/objects/shape.hpp"
+
+namespace vibrissa {
+
+struct Clearance {
+  double gap = std::numeric_limits<double>::infinity();  ///< smallest gap found [m] (< 0: inside the object)
+  double arc_length = 0.0;                                ///< where along the whisker [m]
+  Eigen::Vector3d point_W = Eigen::Vector3d::Zero();      ///< the centre-line point there
+  Eigen::Vector3d normal_W = Eigen::Vector3d::UnitZ();    ///< the object's normal there
+};
+
+/// The smallest gap of the polyline `nodes_W` (arc lengths `arc`, radii `radii` or none) to the placed shape, if
+/// it is below `threshold`: links that cannot come below it are skipped (the signed distance changes no faster
+/// than the distance moved, so a node's gap bounds its neighbourhood; the shape's bounds bound the rest); on each
+/// remaining link the minimum is found from its ends' gaps and slopes (exact for convex shapes; the nearest
+/// local minimum on a mesh). Result gap = +infinity if nothing is below the threshold.
+Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> nodes_W, std::span<const double> arc,
+                    std::span<const double> radii, double threshold = std::numeric_limits<double>::infinity());
+
+}  // namespace vibrissa

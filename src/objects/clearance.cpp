@@ -1,0 +1,96 @@
+#include "vibrissa/objects/clearance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace vibrissa {
+
+namespace {
+
+struct NodeGap {
+  double lower = -std::numeric_limits<double>::infinity();  // a lower bound of the gap
+  bool exact = false;
+  double gap = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+};
+
+}  // namespace
+
+Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> nodes, std::span<const double> arc,
+                    std::span<const double> radii, double threshold) {
+  const std::size_t n = nodes.size();
+  Clearance best;
+  if (n == 0) return best;
+  auto radius = [&](std::size_t i) { return radii.empty() ? 0.0 : radii[i]; };
+  // Lipschitz constant of the gap per unit arc length: 1 (signed distance) + the taper's slope.
+  double slope = 0.0, longest = 0.0;
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double l = std::max(arc[i + 1] - arc[i], 1e-300);
+    slope = std::max(slope, std::abs(radius(i + 1) - radius(i)) / l);
+    longest = std::max(longest, (nodes[i + 1] - nodes[i]).norm());
+  }
+  const double K = 1.0 + slope;
+  thread_local std::vector<NodeGap> g;
+  g.assign(n, NodeGap{});
+  auto evaluate = [&](std::size_t i) {
+    if (g[i].exact) return;
+    const SurfacePoint q = object.nearest_W(nodes[i]);
+    g[i].exact = true;
+    g[i].gap = g[i].lower = q.signed_distance - radius(i);
+    g[i].normal = q.normal;
+    if (g[i].gap < best.gap) best = {g[i].gap, arc[i], nodes[i], q.normal};
+  };
+  // Sphere tracing along the nodes: a node is queried only if its bound (from the shape's box and the last
+  // queried node) lets a neighbouring link come below the threshold.
+  double last_gap = -std::numeric_limits<double>::infinity();  // no node queried yet: no bound from it
+  double last_arc = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double from_box = object.bound_distance_W(nodes[i]) - radius(i);
+    const double from_last = last_gap - K * (arc[i] - last_arc);
+    g[i].lower = std::max(from_box, from_last);
+    if (!(g[i].lower >= threshold + K * longest)) {  // (an infinite threshold: every node)
+      evaluate(i);
+      last_gap = g[i].gap;
+      last_arc = arc[i];
+    }
+  }
+  // Each link that may come below the threshold: the minimum of the gap along it.
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double l = arc[i + 1] - arc[i];
+    if (0.5 * (g[i].lower + g[i + 1].lower - K * l) >= threshold && std::isfinite(threshold)) continue;
+    evaluate(i);
+    evaluate(i + 1);
+    const Eigen::Vector3d a = nodes[i], ab = nodes[i + 1] - nodes[i];
+    const double dr = radius(i + 1) - radius(i);
+    // d gap / d tau = n . (b - a) - (r_b - r_a): a minimum inside needs it to change sign.
+    auto derivative = [&](const Eigen::Vector3d& normal) { return normal.dot(ab) - dr; };
+    double lo = 0.0, hi = 1.0;
+    double d_lo = derivative(g[i].normal), d_hi = derivative(g[i + 1].normal);
+    if (!(d_lo < 0.0 && d_hi > 0.0)) continue;  // the link's minimum is at an end (evaluated)
+    for (int it = 0; it < 60 && hi - lo > 1e-13; ++it) {
+      // Regula falsi on the derivative, bisecting when it stalls.
+      double tau = lo - d_lo * (hi - lo) / (d_hi - d_lo);
+      if (!(tau > lo + 0.01 * (hi - lo) && tau < hi - 0.01 * (hi - lo))) tau = 0.5 * (lo + hi);
+      const Eigen::Vector3d p = a + tau * ab;
+      const SurfacePoint q = object.nearest_W(p);
+      const double gap = q.signed_distance - (radius(i) + tau * dr);
+      if (gap < best.gap) best = {gap, arc[i] + tau * l, p, q.normal};
+      const double d = derivative(q.normal);
+      if (d < 0.0) {
+        lo = tau;
+        d_lo = d;
+      } else {
+        hi = tau;
+        d_hi = d;
+      }
+      if (std::abs(d) * (hi - lo) < 1e-15) break;
+    }
+  }
+  if (best.gap >= threshold) best.gap = std::max(best.gap, threshold);
+  return best;
+}
+
+}  // namespace vibrissa

@@ -1,0 +1,269 @@
+#include "vibrissa/objects/mesh.hpp"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <numbers>
+#include <unordered_map>
+
+#include "surface_math.hpp"
+#include "vibrissa/core/checks.hpp"
+
+namespace vibrissa {
+
+// CGAL's AABB tree over the triangles (double-precision kernel: closest points to rounding).
+struct Mesh::Tree {
+  using K = CGAL::Simple_cartesian<double>;
+  using Triangles = std::vector<K::Triangle_3>;
+  using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
+  using AABB = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+  Triangles triangles;
+  AABB tree;
+};
+
+namespace {
+
+using Tree = CGAL::Simple_cartesian<double>;
+
+std::uint64_t edge_key(int a, int b) {
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+/// Triangles oriented consistently with their neighbours across manifold edges (breadth first per component),
+/// each closed component then outward (positive volume). Returns whether every edge has exactly two triangles.
+bool orient(const std::vector<Eigen::Vector3d>& v, std::vector<std::array<int, 3>>& t) {
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> by_edge;
+  for (std::size_t f = 0; f < t.size(); ++f)
+    for (int e = 0; e < 3; ++e) by_edge[edge_key(t[f][e], t[f][(e + 1) % 3])].push_back(f);
+  bool closed = true;
+  for (const auto& [key, faces] : by_edge) closed = closed && faces.size() == 2;
+  auto has_directed = [](const std::array<int, 3>& tri, int a, int b) {
+    for (int e = 0; e < 3; ++e)
+      if (tri[e] == a && tri[(e + 1) % 3] == b) return true;
+    return false;
+  };
+  std::vector<int> component(t.size(), -1);
+  std::vector<std::size_t> queue;
+  int components = 0;
+  for (std::size_t seed = 0; seed < t.size(); ++seed) {
+    if (component[seed] >= 0) continue;
+    queue.assign(1, seed);
+    component[seed] = components;
+    std::vector<std::size_t> members;
+    bool component_closed = true;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::size_t f = queue[head];
+      members.push_back(f);
+      for (int e = 0; e < 3; ++e) {
+        const int a = t[f][e], b = t[f][(e + 1) % 3];
+        const auto& faces = by_edge[edge_key(a, b)];
+        if (faces.size() != 2) {
+          component_closed = false;
+          continue;
+        }
+        const std::size_t g = faces[0] == f ? faces[1] : faces[0];
+        if (component[g] >= 0) continue;
+        if (has_directed(t[g], a, b)) std::swap(t[g][1], t[g][2]);  // a neighbour runs the shared edge backwards
+        component[g] = components;
+        queue.push_back(g);
+      }
+    }
+    if (component_closed) {
+      double volume = 0.0;
+      for (std::size_t f : members) volume += v[t[f][0]].dot(v[t[f][1]].cross(v[t[f][2]]));
+      if (volume < 0.0)
+        for (std::size_t f : members) std::swap(t[f][1], t[f][2]);
+    }
+    ++components;
+  }
+  return closed;
+}
+
+}  // namespace
+
+Mesh::Mesh(TriangleSoup soup, std::string source) : Shape("mesh"), source_(std::move(source)) {
+  const std::string what = source_.empty() ? std::string("mesh") : "mesh '" + source_ + "'";
+  // Merge vertices at identical positions (STL and unindexed files repeat them per triangle).
+  std::map<std::array<double, 3>, int> index;
+  std::vector<int> remap(soup.vertices.size());
+  for (std::size_t i = 0; i < soup.vertices.size(); ++i) {
+    const Eigen::Vector3d& p = soup.vertices[i];
+    if (!p.allFinite()) invalid_input(what + ": vertex " + std::to_string(i) + " is not finite: " + format_value(p));
+    const auto [it, added] = index.try_emplace({p.x(), p.y(), p.z()}, static_cast<int>(vertices_.size()));
+    if (added) vertices_.push_back(p);
+    remap[i] = it->second;
+  }
+  const int n = static_cast<int>(soup.vertices.size());
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+    std::array<int, 3> tri = soup.triangles[f];
+    for (int& k : tri) {
+      if (k < 0 || k >= n)
+        invalid_input(what + ": triangle " + std::to_string(f) + " refers to vertex " + std::to_string(k) + " of " +
+                      std::to_string(n));
+      k = remap[static_cast<std::size_t>(k)];
+    }
+    const Eigen::Vector3d& a = vertices_[tri[0]];
+    if ((vertices_[tri[1]] - a).cross(vertices_[tri[2]] - a).norm() > 0.0) triangles_.push_back(tri);
+  }
+  if (triangles_.empty()) invalid_input(what + ": no triangles (of non-zero area)");
+  closed_ = orient(vertices_, triangles_);
+
+  // Pseudo-normals: faces, edges (the sum of the two faces' normals), vertices (angle-weighted).
+  const std::size_t F = triangles_.size();
+  face_normal_.resize(F);
+  vertex_normal_.assign(vertices_.size(), Eigen::Vector3d::Zero());
+  std::unordered_map<std::uint64_t, Eigen::Vector3d> edge_sum;
+  for (std::size_t f = 0; f < F; ++f) {
+    const auto& tri = triangles_[f];
+    const Eigen::Vector3d &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
+    face_normal_[f] = (b - a).cross(c - a).normalized();
+    for (int e = 0; e < 3; ++e) {
+      const Eigen::Vector3d& p = vertices_[tri[e]];
+      const Eigen::Vector3d u = (vertices_[tri[(e + 1) % 3]] - p).normalized(), w = (vertices_[tri[(e + 2) % 3]] - p).normalized();
+      vertex_normal_[tri[e]] += std::acos(std::clamp(u.dot(w), -1.0, 1.0)) * face_normal_[f];
+      auto [it, added] = edge_sum.try_emplace(edge_key(tri[e], tri[(e + 1) % 3]), Eigen::Vector3d::Zero());
+      it->second += face_normal_[f];
+      longest_edge_ = std::max(longest_edge_, (vertices_[tri[(e + 1) % 3]] - p).norm());
+    }
+  }
+  for (auto& nv : vertex_normal_) nv.normalize();
+  edge_normal_.resize(F);
+  for (std::size_t f = 0; f < F; ++f)
+    for (int i = 0; i < 3; ++i)  // the edge opposite vertex i runs from vertex i+1 to i+2
+      edge_normal_[f][i] = edge_sum[edge_key(triangles_[f][(i + 1) % 3], triangles_[f][(i + 2) % 3])].normalized();
+  bounds_.lower = bounds_.upper = vertices_.front();
+  for (const auto& p : vertices_) {
+    bounds_.lower = bounds_.lower.cwiseMin(p);
+    bounds_.upper = bounds_.upper.cwiseMax(p);
+  }
+
+  tree_ = std::make_unique<Tree>();
+  tree_->triangles.reserve(F);
+  for (const auto& tri : triangles_) {
+    auto P = [&](int k) { return Tree::K::Point_3(vertices_[k].x(), vertices_[k].y(), vertices_[k].z()); };
+    tree_->triangles.emplace_back(P(tri[0]), P(tri[1]), P(tri[2]));
+  }
+  tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
+  tree_->tree.build();
+  tree_->tree.accelerate_distance_queries();
+  // The first query builds the search structure: done here, so that concurrent queries only read.
+  (void)tree_->tree.closest_point(Tree::K::Point_3(vertices_[0].x(), vertices_[0].y(), vertices_[0].z()));
+}
+
+Mesh::~Mesh() = default;
+
+SurfacePoint Mesh::nearest(const Eigen::Vector3d& p) const {
+  const auto hit = tree_->tree.closest_point_and_primitive(Tree::K::Point_3(p.x(), p.y(), p.z()));
+  const Eigen::Vector3d q(hit.first.x(), hit.first.y(), hit.first.z());
+  const auto f = static_cast<std::size_t>(hit.second - tree_->triangles.cbegin());
+  const auto& tri = triangles_[f];
+  const Eigen::Vector3d &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
+  // Barycentric coordinates of q: which feature of the triangle holds it.
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  const double area2 = n.squaredNorm();
+  const std::array<double, 3> lambda = {(c - b).cross(q - b).dot(n) / area2, (a - c).cross(q - c).dot(n) / area2,
+                                        (b - a).cross(q - a).dot(n) / area2};
+  constexpr double on_feature = 1e-10;
+  int zeros = 0, nonzero = 0, zero = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (lambda[i] <= on_feature) {
+      ++zeros;
+      zero = i;
+    } else {
+      nonzero = i;
+    }
+  }
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d pseudo;
+  Eigen::Matrix3d J;
+  SurfaceFeature feature;
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  if (zeros == 0) {
+    feature = SurfaceFeature::face;
+    pseudo = face_normal_[f];
+    J = I - pseudo * pseudo.transpose();
+  } else if (zeros == 1) {
+    feature = SurfaceFeature::edge;
+    pseudo = edge_normal_[f][zero];
+    direction = (vertices_[tri[(zero + 2) % 3]] - vertices_[tri[(zero + 1) % 3]]).normalized();
+    J = direction * direction.transpose();
+  } else {
+    feature = SurfaceFeature::vertex;
+    pseudo = vertex_normal_[tri[nonzero]];
+    J.setZero();
+  }
+  const double sign = (p - q).dot(pseudo) >= 0.0 ? 1.0 : -1.0;
+  SurfacePoint s = detail::surface_point(p, q, J, sign, pseudo, feature);
+  s.edge_direction = direction;
+  return s;
+}
+
+ShapeDescription Mesh::describe() const {
+  ShapeDescription d{"mesh",
+                     {{"vertex_count", {static_cast<double>(vertices_.size())}},
+                      {"triangle_count", {static_cast<double>(triangles_.size())}},
+                      {"bounds_lower", detail::values_of(bounds_.lower)},
+                      {"bounds_upper", detail::values_of(bounds_.upper)},
+                      {"closed", {closed_ ? 1.0 : 0.0}}},
+                     source_};
+  return d;
+}
+
+TriangleSoup tessellated_sphere(const Eigen::Vector3d& centre, double radius, int subdivisions) {
+  TriangleSoup s;
+  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
+  for (const auto& p : std::vector<Eigen::Vector3d>{{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                                                    {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}})
+    s.vertices.push_back(p.normalized());
+  s.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int level = 0; level < subdivisions; ++level) {
+    std::map<std::uint64_t, int> middle;
+    auto mid = [&](int a, int b) {
+      const auto [it, added] = middle.try_emplace(edge_key(a, b), static_cast<int>(s.vertices.size()));
+      if (added) s.vertices.push_back((s.vertices[a] + s.vertices[b]).normalized());
+      return it->second;
+    };
+    std::vector<std::array<int, 3>> next;
+    for (const auto& t : s.triangles) {
+      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      next.insert(next.end(), {{t[0], ab, ca}, {t[1], bc, ab}, {t[2], ca, bc}, {ab, bc, ca}});
+    }
+    s.triangles = std::move(next);
+  }
+  for (auto& p : s.vertices) p = centre + radius * p;
+  return s;
+}
+
+TriangleSoup tessellated_cylinder(const Eigen::Vector3d& base, double radius, double length, int segments, int rings) {
+  TriangleSoup s;
+  for (int r = 0; r <= rings; ++r)
+    for (int k = 0; k < segments; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / segments;
+      s.vertices.push_back(base + Eigen::Vector3d(radius * std::cos(a), radius * std::sin(a), length * r / rings));
+    }
+  auto at = [&](int r, int k) { return r * segments + (k % segments); };
+  for (int r = 0; r < rings; ++r)
+    for (int k = 0; k < segments; ++k) {
+      s.triangles.push_back({at(r, k), at(r, k + 1), at(r + 1, k + 1)});
+      s.triangles.push_back({at(r, k), at(r + 1, k + 1), at(r + 1, k)});
+    }
+  const int bottom = static_cast<int>(s.vertices.size());
+  s.vertices.push_back(base);
+  s.vertices.push_back(base + Eigen::Vector3d(0, 0, length));
+  for (int k = 0; k < segments; ++k) {
+    s.triangles.push_back({bottom, at(0, k + 1), at(0, k)});
+    s.triangles.push_back({bottom + 1, at(rings, k), at(rings, k + 1)});
+  }
+  return s;
+}
+
+}  // namespace vibrissa

@@ -1,0 +1,68 @@
+#pragma once
+// Newton's method with a backtracking line search, for the object modes' 3x3 systems (object_problem.cpp).
+// Their residuals are smooth only piecewise on a scale the object sets: across the rounded edges and corners
+// of a mesh or a box (the offset surface at the whisker's radius) the normal turns over a band a few radii wide.
+// A Newton step from a face overshoots such a band; halving it lands in the band, from where Newton converges
+// quadratically. (Levenberg-Marquardt's damping turns the step toward the gradient instead and then crawls
+// across the band.) Where no halving of the Newton step reduces the residual, damped steps are tried as in
+// levenberg_marquardt(), from which the evaluation helpers and the result come.
+#include "levenberg_marquardt.hpp"
+
+namespace vibrissa::detail {
+
+template <class Residual>
+LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bounds, double tolerance,
+                            int max_iterations) {
+  using Vec = Eigen::Matrix<double, 3, 1>;
+  using Jac = Eigen::Matrix<double, 3, 3>;
+  LMResult out;
+  u = u.cwiseMax(bounds.lower).cwiseMin(bounds.upper);
+  Vec r;
+  Jac J;
+  evaluate_with_jacobian(f, u, r, J);
+  if (!r.allFinite()) return out;
+  double cost = r.squaredNorm();
+  int it = 0;
+  for (; it < max_iterations; ++it) {
+    if (r.cwiseAbs().maxCoeff() <= tolerance) {
+      out.converged = true;
+      break;
+    }
+    bool accepted = false;
+    auto try_step = [&](const Eigen::Vector3d& step) {
+      if (!step.allFinite()) return false;
+      const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
+      Vec r_new;
+      evaluate(f, u_new, r_new);
+      const double cost_new = r_new.squaredNorm();
+      if (!r_new.allFinite() || !(cost_new < cost)) return false;
+      u = u_new;
+      evaluate_with_jacobian(f, u, r, J);
+      cost = r.squaredNorm();
+      return true;
+    };
+    const Eigen::Vector3d newton = -J.partialPivLu().solve(r);
+    double t = 1.0;
+    for (int halving = 0; halving < 12 && !accepted; ++halving, t *= 0.5) accepted = try_step(t * newton);
+    if (!accepted) {  // damped steps, as levenberg_marquardt()
+      const Eigen::Matrix3d A = J.transpose() * J;
+      const Eigen::Vector3d g = J.transpose() * r;
+      const double scale = std::max(A.diagonal().maxCoeff(), 1e-300);
+      for (double lambda = 1e-6 * scale; lambda < 1e12 * scale && !accepted; lambda *= 10.0) {
+        Eigen::Matrix3d damped = A;
+        damped.diagonal() += lambda * A.diagonal().cwiseMax(1e-12 * scale);
+        accepted = try_step(-damped.ldlt().solve(g));
+      }
+    }
+    if (!accepted) break;  // stalled
+  }
+  out.u = u;
+  out.residual = r.cwiseAbs().maxCoeff();
+  out.cost = cost;
+  out.converged = out.converged || out.residual <= tolerance;
+  out.iterations = it;
+  out.at_upper_bound = (u.array() >= bounds.upper.array() - 1e-12).any();
+  return out;
+}
+
+}  // namespace vibrissa::detail

@@ -1,0 +1,357 @@
+// Object mode (docs/objects.md): the whisker against an object's surface without friction, on its side or at its
+// tip, with the statuses of edge mode and second_contact. The equations are object_problem.hpp's.
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "edge_problem.hpp"
+#include "object_mode.hpp"
+#include "solution_check.hpp"
+#include "vibrissa/objects/clearance.hpp"
+#include "vibrissa/solve/solvers.hpp"
+
+namespace vibrissa {
+
+void validate(const ObjectContact& o) {
+  if (!o.shape) invalid_input("object: no shape given");
+  require_finite(o.X_WO.p_WO, "object.pose.position");
+  if (!o.X_WO.R_WO.allFinite() ||
+      (o.X_WO.R_WO.transpose() * o.X_WO.R_WO - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-9)
+    invalid_input("object.pose.rotation must be a rotation matrix");
+  if (!o.thickness && o.shape->needs_thickness())
+    invalid_input("object.thickness: a " + std::string(o.shape->type()) +
+                  " has edges and corners, which only the whisker's surface can touch: thickness must be on");
+}
+
+namespace detail {
+
+namespace {
+
+bool is_tip(const Whisker& w, double s) { return s >= w.length() * (1.0 - 1e-12); }
+
+/// Scaled unknowns of a side attempt from a force in B at arc length s of the rest whisker (its rest frame there).
+Eigen::Vector3d side_unknowns(const Whisker& w, const Scales& sc, const Eigen::Vector3d& F_B, double s) {
+  int k;
+  double h;
+  w.locate(s, k, h);
+  const Eigen::Matrix3d& R = w.rest_link_frames_B()[static_cast<std::size_t>(std::clamp(k, 0, w.links() - 1))];
+  return {F_B.dot(R.col(1)) / sc.force, F_B.dot(R.col(2)) / sc.force, s / sc.length};
+}
+
+/// Scaled unknowns of a tip attempt from a force in B (the tip link's rest frame).
+Eigen::Vector3d tip_unknowns(const Whisker& w, const Scales& sc, const Eigen::Vector3d& F_B) {
+  const Eigen::Matrix3d& R = w.rest_link_frames_B().back();
+  return R.transpose() * F_B / sc.force;
+}
+
+}  // namespace
+
+Touch first_touch(const Whisker& w, const ObjectGeometryB& g, const DeepestPoint& d) {
+  if (g.core_B) return {d.gap * d.normal_B, d.arc_length};  // onto the nearest point seen along the line
+  // The rest whisker's smallest gap with the object moved by -tau along the deepest point's normal.
+  const std::vector<double> none;
+  const std::span<const double> radii = g.thickness ? std::span<const double>(w.node_radii()) : std::span<const double>(none);
+  auto gap = [&](double tau) {
+    const PlacedShape moved{g.shape, ObjectPose{g.R_BO, g.p_BO + g.offset_B - tau * d.normal_B}};
+    return clearance(moved, w.rest_nodes_B(), w.node_arc_lengths(), radii);
+  };
+  double lo = 0.0, hi = std::max(-d.gap, 1e-9 * w.length());
+  for (int i = 0; i < 60 && gap(hi).gap < 0.0; ++i) hi *= 2.0;
+  for (int i = 0; i < 60 && hi - lo > 1e-13 * w.length(); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (gap(mid).gap < 0.0 ? lo : hi) = mid;
+  }
+  return {-hi * d.normal_B, gap(hi).arc_length};
+}
+
+bool core_within_reach(const Whisker& w, const ObjectGeometryB& g) {
+  EdgeGeometryB line;
+  line.point = g.core_B->point + g.offset_B;
+  line.direction = g.core_B->direction;
+  normal_basis(line.direction, line.e1, line.e2);
+  if (within_reach(w, line)) return true;
+  // Within reach of the cylinder's surface: the line moved toward the base by its radius and the whisker's.
+  const Eigen::Vector3d r = line.point - line.point.dot(line.direction) * line.direction;
+  const double rho = g.core_B->radius + (g.thickness ? w.node_radii().front() : 0.0);
+  if (!(r.norm() > rho)) return true;
+  line.point -= rho * r.normalized();
+  return within_reach(w, line);
+}
+
+bool valid_contact(const Whisker& w, const ObjectGeometryB& g, const ObjectAttempt& a, double sigma) {
+  const ObjectContactPoint p = contact_point_at(w, g, a.state, a.tip, sigma);
+  if (p.F_B.dot(p.normal_B) < -1e-12 * p.F_B.norm()) return false;  // the object would pull
+  // At the tip: the whisker's gap must fall toward the tip (else its side touches first).
+  if (a.tip) return p.normal_B.dot(p.t_B) - p.slope <= 1e-9;
+  return true;
+}
+
+ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                             double& sigma, bool tip, const Eigen::Vector3d& u0, const SolveOptions& options) {
+  ObjectAttempt a = tip ? attempt_tip(w, sc, g, law, u0, options) : attempt_side(w, sc, g, law, sigma, u0, options);
+  int iterations = a.lm.iterations;
+  if (!tip && a.status == Status::slipped_off) {  // the side contact would need s > L: the tip touches
+    const ObjectContactPoint p = contact_point_at(w, g, a.state, false, sigma);
+    ObjectAttempt t = attempt_tip(w, sc, g, law, tip_unknowns(w, sc, p.F_B), options);
+    iterations += t.lm.iterations;
+    if (t.status == Status::converged && valid_contact(w, g, t, sigma)) a = t;
+    else a.status = Status::slipped_off;
+  } else if (tip && a.status == Status::converged && !valid_contact(w, g, a, sigma)) {
+    // The tip's contact is not the whisker's nearest point: its side touches.
+    const ObjectContactPoint p = contact_point_at(w, g, a.state, true, sigma);
+    ObjectAttempt s = attempt_side(w, sc, g, law, sigma, side_unknowns(w, sc, p.F_B, 0.995 * w.length()), options);
+    iterations += s.lm.iterations;
+    a = s;
+  } else if (tip && a.status != Status::converged) {
+    a.status = Status::slipped_off;  // no equilibrium with the tip on the object: it slides off
+  } else if (!tip && g.core_B && a.status == Status::converged) {
+    // On a line core the equations fix the force's line, not its sense: a force toward the axis belongs to a
+    // contact on the axis's other side (the same point where the radius is small).
+    const ObjectContactPoint p = contact_point_at(w, g, a.state, false, sigma);
+    if (p.F_B.dot(p.normal_B) < 0.0) {
+      ObjectAttempt other = attempt_side(w, sc, g, law, -sigma, a.lm.u, options);
+      iterations += other.lm.iterations;
+      if (other.status == Status::converged) {
+        a = other;
+        sigma = -sigma;
+      }
+    }
+  }
+  // The distance equation on the loaded link's lowest piece (object_problem.hpp), until the piece it holds on
+  // is the lowest (each a smooth system, started from the last solution).
+  if (a.status == Status::converged) {
+    ClearancePiece piece = ClearancePiece::centre;
+    for (int change = 0; change < 4; ++change) {
+      const ClearancePiece lowest = lowest_piece(w, g, a.state);
+      if (lowest == piece) break;
+      piece = lowest;
+      ObjectAttempt b = a.tip ? attempt_tip(w, sc, g, law, a.lm.u, options, piece)
+                              : attempt_side(w, sc, g, law, sigma, a.lm.u, options, piece);
+      iterations += b.lm.iterations;
+      if (b.status != Status::converged) break;
+      b.piece = piece;
+      a = b;
+    }
+  }
+  // The force's direction is solved to the tolerance in units of E I_0 / L^2: a small force is polished with a
+  // tolerance scaled by its size, so that its direction holds relative to its magnitude.
+  const double f = std::hypot(a.state.force_x, std::hypot(a.state.force_y, a.state.force_z)) / sc.force;
+  // (the residual bounds the direction's error by about residual / f: polished only where that exceeds 1e-11)
+  if (a.status == Status::converged && f > 0.0 && a.lm.residual > 1e-11 * f) {
+    SolveOptions tight = options;
+    tight.tolerance = options.tolerance * std::max(f, 1e-4);
+    ObjectAttempt b = a.tip ? attempt_tip(w, sc, g, law, a.lm.u, tight, a.piece)
+                            : attempt_side(w, sc, g, law, sigma, a.lm.u, tight, a.piece);
+    b.piece = a.piece;
+    iterations += b.lm.iterations;
+    if (b.status == Status::converged) a = b;
+  }
+  a.lm.iterations = iterations;
+  return a;
+}
+
+ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options) {
+  // Alternate: the force with s held (gap and force direction), then s moved to where the deflected whisker is
+  // nearest the object; then every equation from there.
+  Eigen::Vector3d u = u0;
+  int iterations = 0;
+  const std::vector<double> none;
+  const PlacedShape placed{g.shape, ObjectPose{g.R_BO, g.p_BO + g.offset_B}};
+  std::vector<Eigen::Vector3d> nodes;
+  for (int round = 0; round < 30; ++round) {
+    const ObjectAttempt held =
+        attempt_side(w, sc, g, law, sigma, u, options, ClearancePiece::centre, u[2] * sc.length);
+    iterations += held.lm.iterations;
+    if (held.status != Status::converged) break;
+    u = held.lm.u;
+    deflected_shape(w, Placement{}, held.state, nodes);
+    const Clearance c = clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none);
+    const double s_next = std::clamp(c.arc_length, 1e-6 * sc.length, sc.length) / sc.length;
+    if (std::abs(s_next - u[2]) < 1e-9) break;
+    u[2] = s_next;
+  }
+  ObjectAttempt a = attempt_object(w, sc, g, law, sigma, false, u, options);
+  a.lm.iterations += iterations;
+  return a;
+}
+
+ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
+                                   std::optional<double> hint, const SolveOptions& options, const LoadState* warm) {
+  ObjectOutcome out;
+  std::optional<DeepestPoint> deepest;
+  auto deep = [&]() -> const DeepestPoint& {
+    if (!deepest) deepest = deepest_rest_point(w, g);
+    return *deepest;
+  };
+  // The start: the warm state; else zero force at the hint; else the cantilever push out of the deepest point.
+  bool tip = false;
+  Eigen::Vector3d u0;
+  double sigma = 1.0;
+  auto cold_start = [&] {
+    const DeepestPoint& d = deep();
+    const double c = cantilever_compliance(w, d.arc_length);
+    const Eigen::Vector3d F_B = c > 0.0 ? Eigen::Vector3d(-d.gap / c * d.normal_B) : Eigen::Vector3d::Zero();
+    tip = is_tip(w, d.arc_length);
+    u0 = tip ? tip_unknowns(w, sc, F_B) : side_unknowns(w, sc, F_B, d.arc_length);
+    int k;
+    double h;
+    w.locate(d.arc_length, k, h);
+    sigma = core_side(g, w.rest_point_B(d.arc_length),
+                      w.rest_link_frames_B()[static_cast<std::size_t>(std::clamp(k, 0, w.links() - 1))].col(0));
+  };
+  if (warm) {
+    tip = is_tip(w, warm->arc_length);
+    u0 = tip ? Eigen::Vector3d(warm->force_x, warm->force_y, warm->force_z) / sc.force
+             : Eigen::Vector3d(warm->force_y / sc.force, warm->force_z / sc.force, warm->arc_length / sc.length);
+    if (g.core_B) {  // the side of the line core the warm contact is on
+      const ObjectContactPoint p = contact_point_at(w, g, *warm, tip, 1.0);
+      sigma = core_side(g, p.c_B, p.t_B);
+    }
+  } else {
+    // Pressed against the object: the rest whisker reaches into it. Seen along a line core (an infinite cylinder)
+    // the whisker may also have swept past it entirely; as in edge mode, a line within reach is solved and the
+    // contact's side decides (object_solution).
+    if (g.core_B ? !core_within_reach(w, g) : deep().gap > 0.0) {
+      out.attempt.status = Status::no_contact;
+      return out;
+    }
+    cold_start();
+    if (hint) {
+      tip = is_tip(w, *hint);
+      u0 = tip ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.0, 0.0, std::clamp(*hint, 1e-6 * sc.length, w.length()) / sc.length);
+    }
+  }
+  out.attempt = attempt_object(w, sc, g, law, sigma, tip, u0, options);
+  int iterations = out.attempt.lm.iterations;
+  if (out.attempt.status == Status::not_converged && !tip) {
+    out.attempt = attempt_by_sliding(w, sc, g, law, sigma, u0, options);
+    iterations += out.attempt.lm.iterations;
+  }
+  if (out.attempt.status == Status::not_converged && (warm || hint)) {
+    if (g.core_B || deep().gap <= 0.0) {
+      cold_start();
+      out.attempt = attempt_object(w, sc, g, law, sigma, tip, u0, options);
+      iterations += out.attempt.lm.iterations;
+    }
+  }
+  if (out.attempt.status == Status::not_converged && (g.core_B || deep().gap <= 0.0)) {
+    // Continuation from touch: the object moved back along the normal at the rest whisker's deepest point until it
+    // just touches it (zero force there), then returned to its place in adaptive steps.
+    const Touch touch = first_touch(w, g, deep());
+    const Eigen::Vector3d away = touch.offset_B;
+    bool step_tip = is_tip(w, touch.arc_length);
+    Eigen::Vector3d u = step_tip ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.0, 0.0, touch.arc_length / sc.length);
+    double lambda = 0.0, step = 0.25;
+    ObjectAttempt last = out.attempt;
+    while (lambda < 1.0 && step > 1.0 / 1024.0) {
+      const double next = std::min(1.0, lambda + step);
+      ObjectGeometryB gi = g;
+      gi.offset_B = (1.0 - next) * away;
+      ObjectAttempt a = attempt_object(w, sc, gi, law, sigma, step_tip, u, options);
+      iterations += a.lm.iterations;
+      if (a.status == Status::converged && valid_contact(w, gi, a, sigma)) {
+        step_tip = a.tip;
+        u = a.lm.u;
+        lambda = next;
+        last = a;
+        step = std::min(2.0 * step, 0.5);
+      } else {
+        if (a.status == Status::slipped_off) last = a;
+        step *= 0.5;
+      }
+    }
+    if (lambda < 1.0) {
+      last.status = Status::slipped_off;
+      out.folded = true;
+    }
+    out.attempt = last;
+  }
+  out.attempt.lm.iterations = iterations;
+  out.sigma = sigma;
+  return out;
+}
+
+Solution object_solution(const Whisker& w, const Placement& X, const ObjectContact& object, const ObjectGeometryB& g,
+                         const ObjectOutcome& o, const SolveOptions& options,
+                         const std::optional<Eigen::Vector3d>& approach_W) {
+  const ObjectAttempt& a = o.attempt;
+  if (a.status == Status::no_contact)
+    return unloaded_solution(w, X, Status::no_contact, "the whisker does not reach into the object", options);
+  if (a.status == Status::slipped_off) {
+    Solution off = unloaded_solution(
+        w, X, Status::slipped_off,
+        o.folded ? "the contact equilibrium ends in a fold: the whisker snaps past the object (push-past)"
+                 : "no equilibrium with the tip on the object: the whisker slips off",
+        options);
+    off.fold = o.folded;
+    off.iterations = a.lm.iterations;
+    off.arc_length = std::min(a.state.arc_length, w.length());
+    return off;
+  }
+  Solution out;
+  fill_solution(w, X, a.state, options, std::nullopt, out);
+  out.iterations = a.lm.iterations;
+  out.residual = a.lm.residual * w.length();
+  if (a.status != Status::converged) {
+    set_status(out, a.status, "no equilibrium on the object within the iteration limit");
+    return out;
+  }
+  const ObjectContactPoint p = contact_point_at(w, g, a.state, a.tip, o.sigma);
+  const Eigen::Vector3d n_W = X.R_WB * p.normal_B;
+  SurfaceContact sc;
+  sc.normal_W = n_W;
+  sc.friction_direction_W = X.R_WB * p.friction_B;
+  sc.tip = a.tip;
+  sc.feature = p.surface.feature;
+  sc.friction_force = out.force_W.dot(sc.friction_direction_W);
+  out.contact_point_W = X.to_world(p.point_B);
+  out.normal_force = out.force_W.dot(n_W);
+  set_status(out, Status::converged, a.tip ? "contact at the tip" : "contact on the whisker's side");
+  // Pushed, never pulled: the force along the normal; on a line core also as edge mode judges it, no negative
+  // work on the displacement from the rest shape (edge_mode.cpp).
+  if (*out.normal_force < -1e-12 * out.force_magnitude ||
+      (g.core_B && out.force_W.dot(X.R_WB * (p.c_B - w.rest_point_B(out.arc_length))) <
+                       -1e-12 * out.force_magnitude * w.length())) {
+    set_status(out, Status::no_contact, "the object would have to pull the whisker: not pressed against it");
+  } else if (approach_W && out.force_W.dot(*approach_W) > 0.0) {
+    set_status(out, Status::no_contact, "the whisker is on the far side of the object for the given approach direction");
+  }
+  if (out.status == Status::converged) {  // nowhere else inside the object
+    std::vector<Eigen::Vector3d> nodes;
+    deflected_shape(w, X, a.state, nodes);
+    const std::vector<double> none;
+    const PlacedShape placed{object.shape, object.X_WO};
+    const Clearance c = clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none,
+                                  -second_contact_depth);
+    sc.clearance = std::min(c.gap, 0.0);
+    sc.clearance_arc_length = c.gap < 0.0 ? c.arc_length : a.state.arc_length;
+    if (c.gap < -second_contact_depth) {
+      set_status(out, Status::second_contact,
+                 "another part of the whisker would be inside the object: a second contact (not solved)");
+      out.second_contact_arc_length = c.arc_length;
+    }
+  }
+  out.surface = sc;
+  return out;
+}
+
+}  // namespace detail
+
+Solution solve_object(const Whisker& w, const Placement& X, const ObjectContact& object, std::optional<double> hint,
+                      const SolveOptions& options, const LoadState* warm,
+                      const std::optional<Eigen::Vector3d>& approach_W) {
+  validate(options);
+  validate(object);
+  if (hint) require_finite(*hint, "load.arc_length_hint");
+  if (approach_W) require_finite(*approach_W, "load.approach");
+  const detail::Scales sc(w);
+  const detail::ObjectGeometryB g = detail::object_in_body(X, object);
+  const detail::ObjectOutcome o = detail::solve_object_contact(w, sc, g, detail::FrictionLaw{}, hint, options, warm);
+  Solution out = detail::object_solution(w, X, object, g, o, options, approach_W);
+  if (out.status != Status::converged && out.status != Status::second_contact) out.surface.reset();
+  return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
+}
+
+}  // namespace vibrissa

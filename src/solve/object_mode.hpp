@@ -1,0 +1,43 @@
+#pragma once
+// The driver of the object modes (object_mode.cpp), shared by the frictional mode.
+#include "object_problem.hpp"
+
+namespace vibrissa::detail {
+
+/// Depth below which another part of the whisker counts as inside the object: a second contact [m].
+inline constexpr double second_contact_depth = 1e-9;
+
+struct ObjectOutcome {
+  ObjectAttempt attempt;
+  double sigma = 1.0;   ///< side of a line core
+  bool folded = false;  ///< slipped_off because continuation from touch could not reach the object's place
+};
+
+/// Where the rest whisker first touches the object moved back along the deepest point's normal: the offset of
+/// the object (B) and the arc length of the touch (a line core: moved onto the nearest point seen along it).
+struct Touch {
+  Eigen::Vector3d offset_B;
+  double arc_length;
+};
+Touch first_touch(const Whisker& w, const ObjectGeometryB& g, const DeepestPoint& d);
+/// A line core within the whisker's reach, seen along it (edge mode's test, edge_problem.hpp), with its radius.
+bool core_within_reach(const Whisker& w, const ObjectGeometryB& g);
+/// Whether a converged attempt is a contact: pushing, and at the tip only if the whisker's gap falls toward it.
+bool valid_contact(const Whisker& w, const ObjectGeometryB& g, const ObjectAttempt& a, double sigma);
+/// One attempt from u0, switching between side and tip where the equations say the contact is at the other, and
+/// (a line core) to the axis's other side `sigma` where the force says so.
+ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                             double& sigma, bool tip, const Eigen::Vector3d& u0, const SolveOptions& options);
+/// A side contact found by alternating: the force with s held, then s moved to the deflected whisker's point
+/// nearest the object; then attempt_object from there (when a direct attempt stalls in the object's creases).
+ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options);
+/// The solve: start (warm, hint, or the rest whisker's deepest point), attempts, continuation from touch.
+ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
+                                   std::optional<double> hint, const SolveOptions& options, const LoadState* warm);
+/// The Solution of an outcome: outputs, contact side, approach, second contact.
+Solution object_solution(const Whisker& w, const Placement& X_WB, const ObjectContact& object,
+                         const ObjectGeometryB& g, const ObjectOutcome& outcome, const SolveOptions& options,
+                         const std::optional<Eigen::Vector3d>& approach_W);
+
+}  // namespace vibrissa::detail

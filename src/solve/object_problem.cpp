@@ -1,0 +1,402 @@
+#include "object_problem.hpp"
+
+#include "newton_line_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include <Eigen/Geometry>
+
+namespace vibrissa::detail {
+
+namespace {
+
+template <class S>
+struct SurfaceAt {
+  S distance;
+  V3<S> normal, closest;
+  SurfacePoint value;  ///< the query itself (doubles)
+};
+
+/// The query at c with its derivatives: d distance = n . dc, d n = (dn/dp) dc, closest = c - distance n.
+template <class S>
+SurfaceAt<S> surface_at(const ObjectGeometryB& g, const V3<S>& c) {
+  const Eigen::Vector3d cv(value_of(c.x), value_of(c.y), value_of(c.z));
+  const SurfacePoint q = g.query(cv);
+  SurfaceAt<S> out;
+  out.value = q;
+  if constexpr (std::is_same_v<S, double>) {
+    out.distance = q.signed_distance;
+    out.normal = V3<double>(q.normal);
+  } else {
+    const V3<S> dc = c - V3<S>(cv);  // derivatives only
+    out.distance = S(q.signed_distance) + dot(V3<S>(q.normal), dc);
+    out.normal = V3<S>(q.normal) + mul(q.normal_derivative, dc);
+  }
+  out.closest = c - out.distance * out.normal;
+  return out;
+}
+
+/// r(s) and r'(s) of the whisker's linear taper between nodes (the last link's beyond the tip).
+template <class S>
+S radius_at(const Whisker& w, const S& s, double& slope) {
+  int k;
+  double h;
+  w.locate(value_of(s), k, h);
+  k = std::clamp(k, 0, w.links() - 1);
+  const auto& r = w.node_radii();
+  const auto& arc = w.node_arc_lengths();
+  const auto uk = static_cast<std::size_t>(k);
+  slope = (r[uk + 1] - r[uk]) / (arc[uk + 1] - arc[uk]);
+  return S(r[uk]) + slope * (s - S(arc[uk]));
+}
+
+template <class S>
+V3<S> unit(const V3<S>& v) {
+  using std::sqrt;
+  return (S(1.0) / sqrt(dot(v, v))) * v;
+}
+
+/// The load in the load frame from the force components normal to the whisker (side contacts): the axial part
+/// makes the force normal to the tapered surface (frictionless: F_x = r' F_T / sqrt(1 - r'^2); frictional:
+/// F . t_tangent = 0 with the law's normal); frictional contacts with thickness add friction's couple about the
+/// centre line, C = -r n x F.
+template <class S>
+void side_load(const FrictionLaw& law, bool thickness, const S& Fy, const S& Fz, const S& r, double slope, V3<S>& F_L,
+               V3<S>& C_L) {
+  using std::sqrt;
+  S Fx;
+  if (law.kind == FrictionLaw::Kind::frictionless) {
+    Fx = (slope / std::sqrt(1.0 - slope * slope)) * sqrt(Fy * Fy + Fz * Fz + S(1e-300));
+  } else {
+    const Eigen::Vector3d& k = law.normal_L;
+    Fx = (slope / (1.0 - slope * k.x())) * (Fy * k.y() + Fz * k.z());
+  }
+  F_L = V3<S>(Fx, Fy, Fz);
+  C_L = V3<S>(S(0.0), S(0.0), S(0.0));
+  if (law.kind != FrictionLaw::Kind::frictionless && thickness) C_L = (S(0.0) - r) * cross(V3<S>(law.normal_L), F_L);
+}
+
+template <class S>
+S smaller(const S& a, const S& b) {
+  return value_of(b) < value_of(a) ? b : a;
+}
+
+/// The gap of a piece of the loaded link around the load point c (second-order scheme; docs/objects.md, "The
+/// chain's chords"): the chain is its chords, and the load frame's x axis t (the smooth tangent) is tilted from
+/// the link's chord u by (h - l/2) kappa, so with the gap at c zero and the tangency on t, the chord or its end
+/// nodes could cross the surface by up to l^2 kappa / 16. The distance equation holds for the link's lowest
+/// piece: c itself, its start or end node, or the chord's own nearest point (a Newton step along u from c's
+/// query). Solves keep one piece (a smooth system) and change it where another is lower (attempt_side).
+template <class S>
+S piece_gap(ClearancePiece piece, const Whisker& w, const ObjectGeometryB& g, const S& s, const V3<S>& c,
+            const FollowerVectors<S>& f, const S& gap_c, const SurfacePoint& at_c) {
+  if (piece == ClearancePiece::centre) return gap_c;
+  int k;
+  double h0;
+  w.locate(value_of(s), k, h0);
+  k = std::clamp(k, 0, w.links() - 1);
+  const auto uk = static_cast<std::size_t>(k);
+  const double l = w.link_lengths()[uk];
+  const S h = s - S(w.node_arc_lengths()[uk]);
+  // The chord in the load frame: exp(-[psi]x) e_x, psi = (h - l/2) kappa (chain.hpp), then in B.
+  const V3<S> psi = (h - S(0.5 * l)) * V3<S>(w.load_frame_curvature()[uk]);
+  S a, b;
+  rodrigues_coefficients(dot(psi, psi), a, b);
+  const V3<S> v = rotate(S(-1.0) * psi, a, b, V3<S>(S(1.0), S(0.0), S(0.0)));
+  const V3<S> u = v.x * f[0] + v.y * f[1] + v.z * cross(f[0], f[1]);
+  const double r0 = g.thickness ? w.node_radii()[uk] : 0.0, r1 = g.thickness ? w.node_radii()[uk + 1] : 0.0;
+  if (piece == ClearancePiece::start_node) return surface_at(g, c - h * u).distance - S(r0);
+  if (piece == ClearancePiece::end_node) return surface_at(g, c + (S(l) - h) * u).distance - S(r1);
+  // The chord's nearest point: a Newton step along u from c (the gap's slope and curvature there).
+  const Eigen::Vector3d uv(value_of(u.x), value_of(u.y), value_of(u.z));
+  const double slope = at_c.normal.dot(uv) - (r1 - r0) / l, curvature = uv.dot(at_c.normal_derivative * uv);
+  const double tau = curvature > 0.0 ? std::clamp(-slope / curvature, -value_of(h), l - value_of(h)) : 0.0;
+  const S r_tau = g.thickness ? S(r0) + (h + tau) * ((r1 - r0) / l) : S(0.0);
+  return surface_at(g, c + tau * u).distance - r_tau;
+}
+
+/// Whether a piece of the link can be lower than c: never on a line without radius or in the paper scheme (its
+/// load frame is the loaded link's chord).
+bool pieces_apply(const Whisker& w, const ObjectGeometryB& g) {
+  return w.properties().scheme != Scheme::paper && !(g.core_B && g.core_B->radius == 0.0 && !g.thickness);
+}
+
+LMBounds side_bounds() {
+  LMBounds b;
+  b.lower[2] = 1e-9;
+  b.upper[2] = 1.0;
+  return b;
+}
+
+}  // namespace
+
+SurfacePoint ObjectGeometryB::query(const Eigen::Vector3d& c_B) const {
+  const Eigen::Vector3d p_O = R_BO.transpose() * (c_B - offset_B - p_BO);
+  SurfacePoint q = shape->nearest(p_O);
+  q.closest = R_BO * q.closest + p_BO + offset_B;
+  q.normal = R_BO * q.normal;
+  q.normal_derivative = R_BO * q.normal_derivative * R_BO.transpose();
+  q.edge_direction = R_BO * q.edge_direction;
+  return q;
+}
+
+ObjectGeometryB object_in_body(const Placement& X, const ObjectContact& o) {
+  ObjectGeometryB g;
+  g.shape = o.shape;
+  g.thickness = o.thickness;
+  g.R_BO = X.R_WB.transpose() * o.X_WO.R_WO;
+  g.p_BO = X.R_WB.transpose() * (o.X_WO.p_WO - X.p_W_base);
+  if (const auto core = o.shape->line_core())
+    g.core_B = LineCore{g.R_BO * core->point + g.p_BO, (g.R_BO * core->direction).normalized(), core->radius};
+  return g;
+}
+
+Eigen::Vector3d ObjectContactPoint::normal_in_load_frame() const {
+  const Eigen::Vector3d z = t_B.cross(y_B);
+  return {normal_B.dot(t_B), normal_B.dot(y_B), normal_B.dot(z)};
+}
+
+double core_side(const ObjectGeometryB& g, const Eigen::Vector3d& c, const Eigen::Vector3d& t) {
+  if (!g.core_B) return 1.0;
+  const Eigen::Vector3d d = c - g.core_B->point - g.offset_B;
+  return d.dot(g.core_B->direction.cross(t)) < 0.0 ? -1.0 : 1.0;
+}
+
+ObjectAttempt attempt_side(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                           double sigma, const Eigen::Vector3d& u0, const SolveOptions& options,
+                           ClearancePiece piece, std::optional<double> pinned) {
+  Eigen::Vector3d e1 = Eigen::Vector3d::UnitX(), e2 = Eigen::Vector3d::UnitY();
+  if (g.core_B) normal_basis(g.core_B->direction, e1, e2);  // as edge mode (edge_problem.cpp)
+  auto residual = [&](const auto& u) {
+    using S = std::decay_t<decltype(u[0])>;
+    const S s = sc.length * u[2];
+    double slope = 0.0;
+    const S r = g.thickness ? radius_at(w, s, slope) : S(0.0);
+    V3<S> F_L, C_L;
+    side_load(law, g.thickness, S(sc.force * u[0]), S(sc.force * u[1]), r, slope, F_L, C_L);
+    FollowerVectors<S> follow{V3<S>(S(1.0), S(0.0), S(0.0)), V3<S>(S(0.0), S(1.0), S(0.0))};
+    const auto k = deflect_for_solve<S>(w, F_L, C_L, s, follow);
+    const V3<S>& c = k.p_contact_B;
+    const V3<S>& t = follow[0];
+    const V3<S> F((S(1.0) / sc.force) * k.force_B.x, (S(1.0) / sc.force) * k.force_B.y,
+                  (S(1.0) / sc.force) * k.force_B.z);
+    const double inv_L = 1.0 / sc.length;
+    const SurfaceAt<S> q = surface_at(g, c);
+    // The gap equation holds for the loaded link's closest point (link_clearance), which is c itself on a line.
+    const S gap_c = q.distance - r;
+    const S deficit = gap_c - piece_gap(piece, w, g, s, c, follow, gap_c, q.value);
+    if (g.core_B) {  // the line's terms: (c - axis) = (R + r) u, u . t = r', u normal to the axis
+      using std::sqrt;
+      const V3<S> a(g.core_B->direction);
+      const V3<S> d = c - V3<S>(Eigen::Vector3d(g.core_B->point + g.offset_B));
+      const V3<S> radial = d - dot(d, a) * a;
+      const V3<S> across = cross(a, t);
+      const S sin_b = sqrt(dot(across, across));
+      const V3<S> t_perp = t - dot(t, a) * a;
+      const S sin_g = slope / sin_b;
+      const S cos_g = sqrt(S(1.0) - sin_g * sin_g);
+      const V3<S> n = (sigma * cos_g / sin_b) * across + (sin_g / sin_b) * t_perp;
+      const V3<S> e = radial - (S(g.core_B->radius) + r + deficit) * n;
+      S third;
+      if (law.kind == FrictionLaw::Kind::frictionless) {
+        third = dot(F, a);
+      } else {
+        const V3<S> b = unit(cross(n, t));
+        if (law.kind == FrictionLaw::Kind::stick) {
+          const V3<S> on_surface = c - radial + S(g.core_B->radius) * n;
+          third = inv_L * dot(on_surface - V3<S>(law.previous_B), b);
+        } else {
+          third = dot(F, b) + law.sigma_mu * dot(F, n);
+        }
+      }
+      if (pinned) return std::array<S, 3>{inv_L * (gap_c - deficit), u[2] - *pinned / sc.length, third};
+      return std::array<S, 3>{inv_L * dot(e, V3<S>(e1)), inv_L * dot(e, V3<S>(e2)), third};
+    }
+    const V3<S> b = unit(cross(q.normal, t));
+    S third;
+    if (law.kind == FrictionLaw::Kind::frictionless) third = dot(F, b);
+    else if (law.kind == FrictionLaw::Kind::stick) third = inv_L * dot(q.closest - V3<S>(law.previous_B), b);
+    else third = dot(F, b) + law.sigma_mu * dot(F, q.normal);
+    if (pinned) return std::array<S, 3>{inv_L * (gap_c - deficit), u[2] - *pinned / sc.length, third};
+    return std::array<S, 3>{inv_L * (gap_c - deficit), dot(q.normal, t) - slope, third};
+  };
+  ObjectAttempt a;
+  a.lm = newton_line_search(residual, u0, side_bounds(), options.tolerance / sc.length, options.max_iterations);
+  if (a.lm.converged) a.status = Status::converged;
+  else a.status = a.lm.at_upper_bound ? Status::slipped_off : Status::not_converged;
+  // The state: the load at the solved unknowns (the same numbers the residual gave the walk).
+  const double s = sc.length * a.lm.u[2];
+  double slope = 0.0;
+  const double r = g.thickness ? radius_at(w, s, slope) : 0.0;
+  V3<double> F_L, C_L;
+  side_load(law, g.thickness, sc.force * a.lm.u[0], sc.force * a.lm.u[1], r, slope, F_L, C_L);
+  a.state.force_x = F_L.x;
+  a.state.force_y = F_L.y;
+  a.state.force_z = F_L.z;
+  a.state.couple_x = C_L.x;
+  a.state.couple_y = C_L.y;
+  a.state.couple_z = C_L.z;
+  a.state.arc_length = s;
+  return a;
+}
+
+ObjectAttempt attempt_tip(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                          const Eigen::Vector3d& u0, const SolveOptions& options, ClearancePiece piece) {
+  const double L = w.length();
+  const double r_tip = g.thickness ? w.node_radii().back() : 0.0;
+  // A fixed pair of directions in the tangent plane, continuous near the start's normal.
+  const Eigen::Vector3d reference = [&] {
+    const V3<double> F0(sc.force * u0[0], sc.force * u0[1], sc.force * u0[2]);
+    const auto k = deflect<double>(w, F0, V3<double>(0, 0, 0), L);
+    const Eigen::Vector3d n = g.query(to_eigen(k.p_contact_B)).normal;
+    const Eigen::Vector3d helper = std::abs(n.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    return Eigen::Vector3d((helper - helper.dot(n) * n).normalized());
+  }();
+  auto residual = [&](const auto& u) {
+    using S = std::decay_t<decltype(u[0])>;
+    const V3<S> F_L(sc.force * u[0], sc.force * u[1], sc.force * u[2]);
+    V3<S> C_L(S(0.0), S(0.0), S(0.0));
+    if (law.kind != FrictionLaw::Kind::frictionless && g.thickness)
+      C_L = S(-r_tip) * cross(V3<S>(law.normal_L), F_L);
+    FollowerVectors<S> follow{V3<S>(S(1.0), S(0.0), S(0.0)), V3<S>(S(0.0), S(1.0), S(0.0))};
+    const auto k = deflect_for_solve<S>(w, F_L, C_L, S(L), follow);
+    const SurfaceAt<S> q = surface_at(g, k.p_contact_B);
+    const S gap_c = q.distance - S(r_tip);
+    const S gap = piece_gap(piece, w, g, S(L), k.p_contact_B, follow, gap_c, q.value);
+    const V3<S> e1 = unit(V3<S>(reference) - dot(V3<S>(reference), q.normal) * q.normal);
+    const V3<S> e2 = cross(q.normal, e1);
+    const V3<S> F((S(1.0) / sc.force) * k.force_B.x, (S(1.0) / sc.force) * k.force_B.y,
+                  (S(1.0) / sc.force) * k.force_B.z);
+    const double inv_L = 1.0 / sc.length;
+    V3<S> tangential;
+    if (law.kind == FrictionLaw::Kind::frictionless) {
+      tangential = F;
+    } else if (law.kind == FrictionLaw::Kind::stick) {
+      tangential = inv_L * (q.closest - V3<S>(law.previous_B));
+    } else {
+      const S Fn = dot(F, q.normal);
+      tangential = F - Fn * q.normal + (law.sigma_mu * Fn) * V3<S>(law.slip_B);
+    }
+    return std::array<S, 3>{inv_L * gap, dot(tangential, e1), dot(tangential, e2)};
+  };
+  ObjectAttempt a;
+  a.tip = true;
+  a.lm = newton_line_search(residual, u0, LMBounds{}, options.tolerance / sc.length, options.max_iterations);
+  a.status = a.lm.converged ? Status::converged : Status::not_converged;
+  a.state.force_x = sc.force * a.lm.u[0];
+  a.state.force_y = sc.force * a.lm.u[1];
+  a.state.force_z = sc.force * a.lm.u[2];
+  if (law.kind != FrictionLaw::Kind::frictionless && g.thickness) {
+    const Eigen::Vector3d C = -r_tip * law.normal_L.cross(Eigen::Vector3d(a.state.force_x, a.state.force_y, a.state.force_z));
+    a.state.couple_x = C.x();
+    a.state.couple_y = C.y();
+    a.state.couple_z = C.z();
+  }
+  a.state.arc_length = L;
+  return a;
+}
+
+ClearancePiece lowest_piece(const Whisker& w, const ObjectGeometryB& g, const LoadState& state) {
+  if (!pieces_apply(w, g)) return ClearancePiece::centre;
+  FollowerVectors<double> follow{V3<double>(1, 0, 0), V3<double>(0, 1, 0)};
+  const double s = state.arc_length;
+  const auto k = deflect<double, true>(w, V3<double>(state.force_x, state.force_y, state.force_z),
+                                       V3<double>(state.couple_x, state.couple_y, state.couple_z), s, nullptr, &follow);
+  const SurfacePoint at_c = g.query(to_eigen(k.p_contact_B));
+  double slope = 0.0;
+  const double gap_c = at_c.signed_distance - (g.thickness ? radius_at(w, s, slope) : 0.0);
+  ClearancePiece best = ClearancePiece::centre;
+  double lowest = gap_c;
+  for (ClearancePiece p : {ClearancePiece::start_node, ClearancePiece::end_node, ClearancePiece::chord}) {
+    const double gap = piece_gap(p, w, g, s, k.p_contact_B, follow, gap_c, at_c);
+    if (gap < lowest - 1e-15 * w.length()) {
+      lowest = gap;
+      best = p;
+    }
+  }
+  return best;
+}
+
+ObjectContactPoint contact_point_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state, bool tip,
+                                    double sigma) {
+  ObjectContactPoint p;
+  FollowerVectors<double> follow{V3<double>(1, 0, 0), V3<double>(0, 1, 0)};
+  const auto k = deflect<double, true>(w, V3<double>(state.force_x, state.force_y, state.force_z),
+                                       V3<double>(state.couple_x, state.couple_y, state.couple_z), state.arc_length,
+                                       nullptr, &follow);
+  p.c_B = to_eigen(k.p_contact_B);
+  p.F_B = to_eigen(k.force_B);
+  p.t_B = to_eigen(follow[0]);
+  p.y_B = to_eigen(follow[1]);
+  p.surface = g.query(p.c_B);
+  if (g.thickness) p.radius = radius_at(w, state.arc_length, p.slope);
+  p.normal_B = p.surface.normal;
+  if (g.core_B && !tip) {  // the line's normal u (regular where the centre line is on the axis: edge mode)
+    const Eigen::Vector3d a = g.core_B->direction, across = a.cross(p.t_B), t_perp = p.t_B - p.t_B.dot(a) * a;
+    const double sin_b = across.norm(), sin_g = p.slope / sin_b;
+    // The side: the solve's; where the centre line is on the axis (zero radius, thickness off) the force's.
+    const double side = g.core_B->radius + p.radius > 0.0 ? sigma : p.F_B.dot(across);
+    p.normal_B = (side < 0.0 ? -1.0 : 1.0) * std::sqrt(1.0 - sin_g * sin_g) / sin_b * across + sin_g / sin_b * t_perp;
+  }
+  p.point_B = p.surface.closest;
+  if (tip) {
+    const Eigen::Vector3d tangential = p.F_B - p.F_B.dot(p.normal_B) * p.normal_B;
+    p.friction_B = tangential.norm() > 0.0 ? Eigen::Vector3d(tangential.normalized()) : Eigen::Vector3d::Zero();
+  } else {
+    p.friction_B = p.normal_B.cross(p.t_B).normalized();
+  }
+  return p;
+}
+
+DeepestPoint deepest_rest_point(const Whisker& w, const ObjectGeometryB& g) {
+  const auto& nodes = w.rest_nodes_B();
+  const auto& arc = w.node_arc_lengths();
+  const auto& radii = w.node_radii();
+  auto gap_at = [&](double s) {
+    double slope = 0.0;
+    const double r = g.thickness ? radius_at(w, s, slope) : 0.0;
+    return g.query(w.rest_point_B(s)).signed_distance - r;
+  };
+  std::size_t best = 0;
+  double best_gap = 1e300;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const double gap = g.query(nodes[i]).signed_distance - (g.thickness ? radii[i] : 0.0);
+    if (gap < best_gap) {
+      best_gap = gap;
+      best = i;
+    }
+  }
+  // Golden-section search over the two links about the deepest node.
+  double lo = arc[best > 0 ? best - 1 : 0], hi = arc[std::min(best + 1, nodes.size() - 1)];
+  const double phi = (std::sqrt(5.0) - 1.0) / 2.0;
+  double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo), f1 = gap_at(x1), f2 = gap_at(x2);
+  for (int it = 0; it < 60 && hi - lo > 1e-12 * w.length(); ++it) {
+    if (f1 < f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - phi * (hi - lo);
+      f1 = gap_at(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + phi * (hi - lo);
+      f2 = gap_at(x2);
+    }
+  }
+  DeepestPoint d;
+  d.arc_length = arc[best];
+  d.gap = best_gap;
+  const double s = 0.5 * (lo + hi), gs = gap_at(s);
+  if (gs < best_gap) {
+    d.arc_length = s;
+    d.gap = gs;
+  }
+  d.normal_B = g.query(w.rest_point_B(d.arc_length)).normal;
+  return d;
+}
+
+}  // namespace vibrissa::detail
