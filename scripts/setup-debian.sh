@@ -24,6 +24,10 @@ PACKAGES=(
   ffmpeg                   # MP4 animations
   python3-venv python3-pip dpkg-dev   # install checks: pip into a venv, cpack -G DEB (dpkg-shlibdeps)
   clang-14 libclang-rt-14-dev libomp-14-dev   # libFuzzer harnesses (scripts/fuzz.sh)
+  libtomlplusplus-dev libyaml-cpp-dev   # calibrations: anipose calibration.toml, OpenCV FileStorage YAML
+  python3-opencv python3-scipy          # tests: OpenCV's projectPoints as the reference camera model; SciPy checks
+  chromium chromium-driver python3-selenium libjs-three   # viewer: three.js inlined into pages; headless tests
+  ccache                                # compiler cache (used by the build when present)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

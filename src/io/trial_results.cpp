@@ -20,8 +20,6 @@ using namespace vibrissa::trial;
 
 namespace {
 
-constexpr double deg = 180.0 / std::numbers::pi;
-
 // One mode's columns; `what` describes the mode in the column descriptions.
 void add_mode(ResultTable& t, const PipelineResult& r, Mode mode, const std::string& prefix) {
   const std::size_t n = r.frames.size();
