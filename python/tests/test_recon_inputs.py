@@ -71,14 +71,14 @@ def test_numpy_arrays_and_dataframes_give_the_trial_of_the_files(tmp_path):
     # (F, P, 3) with a likelihood column: points below min_likelihood are dropped like missing ones.
     with_l = {n: np.concatenate([a, np.ones(a.shape[:2] + (1,))], axis=2) for n, a in px.items()}
     same_trial(vibrissa.reconstruct(with_l["top"], with_l["front"], cams)[0], from_files)
-    # DeepLabCut's single-animal DataFrame (the tip of frame 3 at likelihood 0, below min_likelihood).
-    top_df, front_df = dlc_frame(np.nan_to_num(px["top"])), dlc_frame(px["front"])
+    # DeepLabCut's single-animal DataFrame (the tip of frame 3 NaN at likelihood 0: not tracked).
+    top_df, front_df = dlc_frame(px["top"]), dlc_frame(px["front"])
     from_frames, report_df = vibrissa.reconstruct(top_df, front_df, cams)
     same_trial(from_frames, from_files)
     assert from_frames.source == "top: pandas DataFrame"
     # The multi-animal layout: the individual is chosen by name, the other one ignored.
     junk = px["top"][:, ::-1] + 50.0
-    multi_top = dlc_frame(None, {"mouse1": junk, "mouse2": np.nan_to_num(px["top"])})
+    multi_top = dlc_frame(None, {"mouse1": junk, "mouse2": px["top"]})
     multi_front = dlc_frame(None, {"mouse1": px["front"] + 30.0, "mouse2": px["front"]})
     same_trial(vibrissa.reconstruct(multi_top, multi_front, cams, individual="mouse2")[0], from_files)
     with pytest.raises(ValueError, match="2 individuals: choose one"):

@@ -12,12 +12,7 @@ namespace vibrissa {
 
 namespace {
 
-/// Four significant digits: a message shows the value as the user would recognise it.
-std::string sig(double v) {
-  std::array<char, 32> buf{};
-  const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::general, 4);
-  return ec == std::errc() ? std::string(buf.data(), end) : format_value(v);
-}
+std::string sig(double v) { return format_significant(v, 4); }
 
 /// A length as a person writes it: "40 m", "35 um", "12.5 mm".
 std::string length_text(double m) {
@@ -44,6 +39,12 @@ std::string length_hint(double v, double lo, double hi) {
 }
 
 }  // namespace
+
+std::string format_significant(double v, int digits) {
+  std::array<char, 64> buf{};
+  const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::general, digits);
+  return ec == std::errc() ? std::string(buf.data(), end) : format_value(v);
+}
 
 std::optional<std::string> length_warning(std::string_view quantity, double L) {
   if (!(L < plausible::min_length_m || L > plausible::max_length_m)) return std::nullopt;
@@ -116,10 +117,10 @@ std::optional<std::string> reach_warning(std::string_view field, const Eigen::Ve
   if (n > 0.0 && std::isfinite(n)) d -= d.dot(direction_W / n) * (direction_W / n);
   const double distance = d.norm();
   if (!(distance > plausible::max_reach_lengths * L)) return std::nullopt;
-  std::string hint;
-  if (distance * 1e-3 <= plausible::max_reach_lengths * L)
+  std::string hint;  // a unit slip only if no set-up is that large (beyond 1 m); else just out of reach
+  if (distance > 1.0 && distance * 1e-3 <= plausible::max_reach_lengths * L)
     hint = ": positions in mm given as metres?";
-  else if (distance * 1e-6 <= plausible::max_reach_lengths * L)
+  else if (distance > 1.0 && distance * 1e-6 <= plausible::max_reach_lengths * L)
     hint = ": positions in um given as metres?";
   return std::string(field) + " passes " + length_text(distance) + " from the whisker base, beyond the reach of a " +
          length_text(L) + " whisker (" + sig(plausible::max_reach_lengths) + " lengths): it can never be touched" +

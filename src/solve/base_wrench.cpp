@@ -11,7 +11,7 @@
 #include <Eigen/SVD>
 
 #include "contact_problem.hpp"
-#include "vibrissa/core/checks.hpp"
+#include "vibrissa/core/plausibility.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
@@ -477,8 +477,9 @@ std::vector<std::string> base_wrench_warnings(const BaseWrenchResult& r) {
   const Eigen::Vector3d& n = r.identifiability.null_direction;
   return {"underdetermined: the signals " + r.signals.name() + " (" + std::to_string(r.identifiability.signals) +
           " equations) cannot determine the contact (s, f, angle); the fit at s = " +
-          format_value(r.solution.arc_length * 1e3) + " mm is one of a family (null direction ds/L " +
-          format_value(n.x()) + ", df/F0 " + format_value(n.y()) + ", dangle " + format_value(n.z()) +
+          format_significant(r.solution.arc_length * 1e3) + " mm is one of a family (null direction ds/L " +
+          format_significant(n.x(), 2) + ", df/F0 " + format_significant(n.y(), 2) + ", dangle " +
+          format_significant(n.z(), 2) +
           "), not the contact: fit more signals (Fx or Mx with My, Mz; docs/inverse.md)"};
 }
 

@@ -34,6 +34,9 @@ inline constexpr double max_force_N = 0.1;
 inline constexpr double max_reach_lengths = 1.5;
 }  // namespace plausible
 
+/// `v` with `digits` significant digits ("1.25", "573"): a warning shows values as a user recognises them.
+std::string format_significant(double v, int digits = 4);
+
 /// One sentence per implausible property of `whisker` (empty if none), naming the value and the range.
 std::vector<std::string> plausibility_warnings(const Whisker& whisker);
 
