@@ -4,6 +4,8 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -14,6 +16,7 @@
 #include "vibrissa/recon/geometry.hpp"
 #include "vibrissa/recon/reconstruct.hpp"
 #include "vibrissa/recon/reconstruct_files.hpp"
+#include "vibrissa/trial/plausibility.hpp"
 
 namespace vibrissa::cli {
 
@@ -92,8 +95,15 @@ void register_reconstruct(CLI::App& app) {
     if (progress) progress->finish();
     io::write_trial(result.trial, a->out);
     std::cout << "vibrissa reconstruct: " << recon::summary_line(result) << " -> " << a->out << "\n";
-    if (!a->report.empty())
-      io::write_json_file(a->report, nlohmann::json::parse(recon::report_json(result.reconstruction)));
+    const std::vector<std::string> warnings = trial::trial_warnings(result.trial);  // a peg out of reach, ...
+    for (const std::string& w : warnings) std::cerr << "vibrissa reconstruct: warning: " << w << "\n";
+    if (!a->report.empty()) {
+      nlohmann::json report = nlohmann::json::parse(recon::report_json(result.reconstruction));
+      nlohmann::json& listed = report["warnings"];  // as vibrissa.reconstruct's report
+      if (listed.is_null()) listed = nlohmann::json::array();
+      for (const std::string& w : warnings) listed.push_back(w);
+      io::write_json_file(a->report, report);
+    }
   });
 }
 

@@ -15,6 +15,7 @@
 #include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/io/trial_outputs.hpp"
+#include "vibrissa/trial/plausibility.hpp"
 
 namespace vibrissa::cli {
 
@@ -73,6 +74,7 @@ void register_trial(CLI::App& app) {
     if (!a->window.empty() && !(a->window[0] < a->window[1]))
       throw std::invalid_argument("--window START_S,END_S: start must be before end");
     const trial::Trial tr = io::read_trial(a->trial);
+    for (const std::string& w : trial::trial_warnings(tr)) std::cerr << "vibrissa trial: warning: " << w << "\n";
     if (a->mu >= 0.0) a->flags.mu = a->mu;
     if (a->mu_eq7 >= 0.0) a->flags.mu_eq7 = a->mu_eq7;
     const std::size_t contact = trial::contact_frame_count(tr);

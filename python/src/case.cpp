@@ -133,9 +133,9 @@ void bind_case(py::module_& m) {
           },
           "Solves the case exactly as `vibrissa solve` does.")
       .def_property_readonly(
-          "warnings", [](const Case& c) { return plausibility_warnings(c.whisker); },
-          "Plausibility warnings of the case's whisker (a likely unit slip; docs/formats.md), as `vibrissa solve` "
-          "prints them.")
+          "warnings", [](const Case& c) { return case_warnings(c); },
+          "Plausibility warnings of the case (a likely unit slip of the whisker, pose or load; docs/conventions.md), "
+          "as `vibrissa solve` prints them.")
       .def("__repr__", [](const Case& c) {
         return "Case(mode=" + load_to_dict(c.load)["mode"].cast<std::string>() +
                ", links=" + std::to_string(c.whisker.links()) + ")";
@@ -148,8 +148,18 @@ void bind_case(py::module_& m) {
       },
       py::arg("case"), "Solves a Case exactly as `vibrissa solve` does.");
   m.def(
-      "whisker_from_json", [](const std::string& text) { return whisker_from_json(parse(text, "whisker")); },
-      py::arg("text"), "A Whisker from the JSON text of a case's \"whisker\" object (docs/formats.md).");
+      "whisker_from_json",
+      [](const std::string& text) {
+        std::vector<std::string> warnings;
+        Whisker w = whisker_from_json(parse(text, "whisker"), &warnings);
+        std::vector<std::string> all = plausibility_warnings(w);
+        all.insert(all.end(), warnings.begin(), warnings.end());
+        warn_all(all);
+        return w;
+      },
+      py::arg("text"),
+      "A Whisker from the JSON text of a case's \"whisker\" object (docs/formats.md); plausibility warnings "
+      "(a likely unit slip) are raised with warnings.warn.");
   m.def(
       "solution_to_json", &solution_json_text,
       py::arg("solution"), py::arg("indent") = 2,

@@ -103,4 +103,9 @@ py::array_t<double> to_array(const std::vector<double>& values) {
   return out;
 }
 
+void warn_all(const std::vector<std::string>& messages) {
+  for (const std::string& m : messages)
+    if (PyErr_WarnEx(PyExc_UserWarning, m.c_str(), 1) != 0) throw py::error_already_set();
+}
+
 }  // namespace vibrissa::python

@@ -38,6 +38,10 @@ std::vector<double> vector1(py::handle obj, const char* name);
 /// A thread count: a Python int in [min_value, limits::max_threads]; ValueError naming "threads" otherwise.
 int thread_count_arg(const py::handle& threads, int min_value);
 
+/// Raises each message with Python's warnings.warn (UserWarning, attributed to the caller); an exception
+/// (the warning filter set to "error") propagates as py::error_already_set. Needs the GIL.
+void warn_all(const std::vector<std::string>& messages);
+
 /// New NumPy arrays (they own their memory).
 py::array_t<double> to_array(const Eigen::Vector3d& v);
 py::array_t<double> to_array(const Eigen::Matrix3d& m);

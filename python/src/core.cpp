@@ -6,6 +6,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "vibrissa/core/plausibility.hpp"
 #include "vibrissa/core/pose.hpp"
 #include "vibrissa/core/whisker.hpp"
 
@@ -106,6 +107,7 @@ void bind_core(py::module_& m) {
              p.phi = phi;
              p.zeta = zeta;
              validate(p);
+             warn_all(pose_warnings(p, "Pose"));
              return p;
            }),
            py::kw_only(), py::arg("base") = py::make_tuple(0.0, 0.0, 0.0), py::arg("theta") = 0.0,
@@ -229,7 +231,9 @@ void bind_core(py::module_& m) {
             const auto pts = points3(points, "whisker.points");
             const WhiskerProperties props = properties.is_none() ? WhiskerProperties{} : properties.cast<WhiskerProperties>();
             const std::optional<Pose> placement = pose.is_none() ? std::nullopt : std::optional<Pose>(pose_arg(pose));
-            return Whisker::from_points(pts, props, placement);
+            Whisker w = Whisker::from_points(pts, props, placement);
+            warn_all(plausibility_warnings(w));
+            return w;
           },
           py::arg("points"), py::kw_only(), py::arg("properties") = py::none(), py::arg("pose") = py::none(),
           "Rest shape from an (M, 3) array of points [m], base first (M >= 3), resampled into "
@@ -239,7 +243,9 @@ void bind_core(py::module_& m) {
           "from_parabola",
           [](double length, double curvature, const py::object& properties, const py::object& pose) {
             const WhiskerProperties props = properties.is_none() ? WhiskerProperties{} : properties.cast<WhiskerProperties>();
-            return Whisker::from_parabola(length, curvature, props, pose_arg(pose));
+            Whisker w = Whisker::from_parabola(length, curvature, props, pose_arg(pose));
+            warn_all(plausibility_warnings(w));
+            return w;
           },
           py::arg("length"), py::arg("curvature"), py::kw_only(), py::arg("properties") = py::none(),
           py::arg("pose") = py::none(),
@@ -249,7 +255,9 @@ void bind_core(py::module_& m) {
           "from_cubic",
           [](double length, double A, double B, const py::object& properties, const py::object& pose) {
             const WhiskerProperties props = properties.is_none() ? WhiskerProperties{} : properties.cast<WhiskerProperties>();
-            return Whisker::from_cubic(length, A, B, props, pose_arg(pose));
+            Whisker w = Whisker::from_cubic(length, A, B, props, pose_arg(pose));
+            warn_all(plausibility_warnings(w));
+            return w;
           },
           py::arg("length"), py::arg("A"), py::arg("B"), py::kw_only(), py::arg("properties") = py::none(),
           py::arg("pose") = py::none(),

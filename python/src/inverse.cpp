@@ -120,6 +120,9 @@ void bind_inverse(py::module_& m) {
       .def_readonly("roots", &BaseWrenchResult::roots)
       .def_readonly("identifiability", &BaseWrenchResult::identifiability)
       .def_property_readonly("signals", [](const BaseWrenchResult& r) { return r.signals.name(); })
+      .def_property_readonly("warnings", &base_wrench_warnings,
+                             "What to read before the numbers: for Status.underdetermined, why the fit is not the "
+                             "contact (also raised with warnings.warn by solve_base_wrench)")
       .def(
           "to_json", [](const BaseWrenchResult& r, int indent) { return base_wrench_to_json(r).dump(indent); },
           py::arg("indent") = 2, "The result JSON of `vibrissa solve` in base_wrench mode.")
@@ -139,8 +142,13 @@ void bind_inverse(py::module_& m) {
         const Eigen::Vector3d F = vec3(force_W, "force_W"), M = vec3(moment_W, "moment_W");
         const BaseWrenchOptions o = options_from(signals, noise, starts, options);
         const std::optional<LoadState> ws = warm_arg(warm);
-        py::gil_scoped_release release;
-        return solve_base_wrench(w, X, F, M, o, ws ? &*ws : nullptr);
+        BaseWrenchResult r;
+        {
+          py::gil_scoped_release release;
+          r = solve_base_wrench(w, X, F, M, o, ws ? &*ws : nullptr);
+        }
+        warn_all(base_wrench_warnings(r));
+        return r;
       },
       py::arg("whisker"), py::arg("force_W"), py::arg("moment_W"), py::kw_only(), py::arg("pose") = py::none(),
       py::arg("signals") = "all", py::arg("noise") = py::none(), py::arg("starts") = 16, py::arg("warm") = py::none(),

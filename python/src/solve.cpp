@@ -56,6 +56,9 @@ void bind_solve(py::module_& m) {
       .value("not_converged", Status::not_converged, "the iteration limit was reached or the solver stalled")
       .value("second_contact", Status::second_contact,
              "object modes: another part of the whisker would be inside the object (second_contact_arc_length)")
+      .value("underdetermined", Status::underdetermined,
+             "base-wrench inverse: the fit explains the signals, but they cannot determine the contact (a family "
+             "of fits along identifiability.null_direction)")
       .def_property_readonly("label", [](Status s) { return std::string(to_string(s)); },
                              "The name used in JSON results (\"converged\", ...).");
   py::enum_<ContactState>(m, "ContactState", "Whether the whisker touches its object (same codes in every file).")

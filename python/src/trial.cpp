@@ -18,6 +18,7 @@
 #include "vibrissa/io/trial_io.hpp"
 #include "vibrissa/io/trial_outputs.hpp"
 #include "vibrissa/io/trial_results.hpp"
+#include "vibrissa/trial/plausibility.hpp"
 #include "vibrissa/trial/synth_parameters.hpp"
 
 namespace vibrissa::python {
@@ -238,11 +239,21 @@ void bind_trial(py::module_& m) {
           "write", [](const trial::Trial& t, const std::string& path) { io::write_trial(t, path); }, py::arg("path"),
           "Writes the trial as `vibrissa synth` does, format by extension (.csv, .h5/.hdf5, .mat), atomically.")
       .def("__len__", &trial::Trial::frames)
+      .def_property_readonly("warnings", &trial::trial_warnings,
+                             "Likely unit slips (docs/conventions.md, \"Plausible ranges\"): the whisker's size, "
+                             "the angle series, edges out of reach; as `vibrissa trial` prints them.")
       .def("__repr__", &trial_repr);
 
-  m.def("read_trial", &io::read_trial, py::arg("path"),
-        "Reads a trial file (.csv, .h5/.hdf5, .mat) as `vibrissa trial` does; ValueError naming file, row and "
-        "column for invalid data.");
+  m.def(
+      "read_trial",
+      [](const std::string& path) {
+        trial::Trial t = io::read_trial(path);
+        warn_all(trial::trial_warnings(t));
+        return t;
+      },
+      py::arg("path"),
+      "Reads a trial file (.csv, .h5/.hdf5, .mat) as `vibrissa trial` does; ValueError naming file, row and "
+      "column for invalid data; likely unit slips (Trial.warnings) are raised with warnings.warn.");
 
   m.def(
       "_synthesize_trial",

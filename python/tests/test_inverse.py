@@ -30,7 +30,11 @@ def test_round_trip_with_pose(whisker, s, f, zeta):
 
 def test_bending_only_is_flagged_underdetermined(whisker):
     fwd = vibrissa.solve_force(whisker, 1e-4, 0.015, 0.4)
-    inv = vibrissa.solve_base_wrench(whisker, fwd.force_W, fwd.moment_W, signals=["My", "Mz"])
+    with pytest.warns(UserWarning, match=r"underdetermined: the signals bending \(2 equations\)"):
+        inv = vibrissa.solve_base_wrench(whisker, fwd.force_W, fwd.moment_W, signals=["My", "Mz"])
+    assert inv.solution.status == vibrissa.Status.underdetermined
+    assert vibrissa.STATUS_NAMES[int(vibrissa.Status.underdetermined)] == "underdetermined"
+    assert len(inv.warnings) == 1 and inv.warnings[0].startswith("underdetermined")
     assert inv.signals == "bending"
     assert not inv.identifiability.identifiable
     assert np.isinf(inv.identifiability.condition_number)
@@ -68,6 +72,9 @@ def test_batch_series_with_warm_starts_equals_single_solves(whisker):
     for k in (0, 5, 11):
         single = vibrissa.solve_base_wrench(whisker, F[k], M[k])
         assert two.arc_length[0, k] == pytest.approx(single.solution.arc_length, rel=1e-9)
+    with pytest.warns(UserWarning, match="12 of 12 fits are underdetermined"):
+        bending = vibrissa.solve_base_wrench_batch(whisker, F, M, signals="bending")
+    assert bending.underdetermined.all() and not bending.converged.any()
 
 
 def test_cli_base_wrench_mode(cli, tmp_path, whisker):
@@ -87,7 +94,11 @@ def test_cli_base_wrench_mode(cli, tmp_path, whisker):
     case["load"]["signals"] = ["My", "Mz"]
     case["load"].pop("noise")
     path.write_text(json.dumps(case))
-    out = json.loads(subprocess.run([cli, "solve", str(path)], check=True, capture_output=True, text=True).stdout)
+    run = subprocess.run([cli, "solve", str(path)], check=True, capture_output=True, text=True)
+    out = json.loads(run.stdout)
+    assert out["status"] == "underdetermined"
+    assert out["warnings"][0].startswith("underdetermined: the signals bending")
+    assert run.stderr.startswith("vibrissa: warning: underdetermined")
     assert out["base_wrench"]["identifiability"]["condition_number"] is None
     assert vibrissa.Case.from_file(str(path)).mode == "base_wrench"
     case["load"]["noise"] = [1e-6]

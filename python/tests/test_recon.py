@@ -43,7 +43,7 @@ def test_python_and_cli_give_the_same_trial(cli, tmp_path):
                    check=True, capture_output=True)
     seen = []
     trial, report = vibrissa.reconstruct(tmp_path / "top.csv", tmp_path / "front.csv", tmp_path / "cams.json",
-                                         peg=peg, progress=lambda done, total: seen.append((done, total)))
+                                         peg_m=peg, progress=lambda done, total: seen.append((done, total)))
     from_cli = vibrissa.read_trial(str(tmp_path / "cli.h5"))
     assert len(trial) == len(from_cli) == 12
     for name in ("time", "base_W", "theta", "phi", "zeta", "contact", "contact_W", "shape_W", "rest_shape"):
@@ -70,7 +70,7 @@ def test_reconstruction_columns_round_trip(tmp_path):
     write_views(tmp_path)
     th = np.radians(5.0 + 2.0 * 8)  # a peg through the whisker in frame 8: a trial file needs a contact period
     peg = [0.02 * np.cos(th) - 8 * 0.02**2 * np.sin(th), 0.02 * np.sin(th) + 8 * 0.02**2 * np.cos(th), 0.0]
-    trial, _ = vibrissa.reconstruct(tmp_path / "top.csv", tmp_path / "front.csv", tmp_path / "cams.json", peg=peg)
+    trial, _ = vibrissa.reconstruct(tmp_path / "top.csv", tmp_path / "front.csv", tmp_path / "cams.json", peg_m=peg)
     assert trial.reconstructed.dtype == np.uint8
     np.testing.assert_array_equal(trial.reconstructed, [1] * 5 + [0] + [1] * 6)  # frame 5 lacks the front view
     assert np.isnan(trial.reprojection_px[5]) and np.all(trial.reprojection_px[trial.reconstructed == 1] < 1e-3)

@@ -66,7 +66,7 @@ def test_every_cli_hdf5_dataset_has_units(cli, tmp_path):
         assert status.dtype == np.int8 and text(status.attrs["units"]) == "code"
         table = code_table(status.attrs["codes"])
         assert table == {-1: "not_in_contact", 0: "converged", 1: "no_contact", 2: "slipped_off", 3: "not_converged",
-                         4: "second_contact"}
+                         4: "second_contact", 5: "underdetermined"}
         labels = [r["edge_status"] for r in rows]
         assert [table[int(v)] for v in status[()]] == labels
         assert "converged" in labels and "not_in_contact" in labels

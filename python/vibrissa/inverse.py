@@ -3,6 +3,8 @@ frame by frame, from the force and moment at its base."""
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from . import _vibrissa
@@ -14,7 +16,8 @@ __all__ = ["BaseWrenchBatch", "solve_base_wrench_batch"]
 class BaseWrenchBatch:
     """Stacked results of :func:`solve_base_wrench_batch`, shape (F, ...) or (S, F, ...).
 
-    * ``status`` int32 codes of :class:`Status` (``STATUS_NAMES[code]``), ``converged`` bool
+    * ``status`` int32 codes of :class:`Status` (``STATUS_NAMES[code]``), ``converged`` bool (``underdetermined``
+      bool: fits that explain the signals but cannot locate the contact; a warning says how many)
     * ``arc_length`` [m], ``force_magnitude`` [N], ``angle`` [rad], ``chi2``
     * ``contact_point_W`` (..., 3) world [m] (``contact_point``: deprecated alias, removed in 0.2.0)
     * ``identifiable`` bool, ``condition_number``, ``covariance`` (..., 3, 3) of (s, f, zeta),
@@ -32,6 +35,7 @@ class BaseWrenchBatch:
 
         self.status = np.array([int(r.solution.status) for r in rows], dtype=np.int32).reshape(shape)
         self.converged = self.status == int(_vibrissa.Status.converged)
+        self.underdetermined = self.status == int(_vibrissa.Status.underdetermined)
         self.arc_length = stack(lambda r: r.solution.arc_length)
         self.force_magnitude = stack(lambda r: r.solution.force_magnitude)
         self.angle = stack(lambda r: r.solution.angle)
@@ -61,4 +65,9 @@ def solve_base_wrench_batch(whisker, force_W, moment_W, *, pose=None, signals="a
     series_axis = np.ndim(force_W) == 3
     results = _vibrissa._solve_base_wrench_series(whisker, force_W, moment_W, pose, signals, noise, starts, options,
                                                   threads, progress)
-    return BaseWrenchBatch(results, series_axis)
+    batch = BaseWrenchBatch(results, series_axis)
+    n = int(batch.underdetermined.sum())
+    if n:
+        first = next(r for series in results for r in series if r.warnings)
+        warnings.warn(f"{n} of {batch.status.size} fits are underdetermined (first: {first.warnings[0]})", stacklevel=2)
+    return batch

@@ -171,8 +171,11 @@ def analyze_trial(trial, mu=None, cutoff=85.0, filter_order=2, no_filter=False, 
     ``progress(done, total)`` counts solved contact frames. Returns a :class:`TrialResult`.
     """
     if isinstance(trial, (str, os.PathLike)):
-        trial = read_trial(os.fspath(trial))
-    if not isinstance(trial, Trial):
+        trial = read_trial(os.fspath(trial))  # warns about likely unit slips
+    elif isinstance(trial, Trial):
+        for message in trial.warnings:  # likely unit slips, as `vibrissa trial` prints them
+            warnings.warn(message, stacklevel=2)
+    else:
         raise TypeError(f"trial must be a vibrissa.Trial or a path, got {type(trial).__name__}")
     outputs = _vibrissa._analyze_trial(trial, mu, mu_eq7, float(cutoff), int(filter_order), bool(no_filter),
                                        bool(no_roll_fit), bool(rest_shape_per_contact), progress)

@@ -173,8 +173,9 @@ const TrackedFrame& ContactTracker::step(const Placement& X, std::span<const Edg
       case Status::no_contact:  // released: the edge would have to pull
         frame_.state = ContactState::free;
         break;
-      case Status::slipped_off:    // past the tip, or snapped past a fold of the equilibrium branch
-      case Status::not_converged:  // no equilibrium continues the contact: it slides along and snaps free
+      case Status::slipped_off:      // past the tip, or snapped past a fold of the equilibrium branch
+      case Status::not_converged:    // no equilibrium continues the contact: it slides along and snaps free
+      case Status::underdetermined:  // (the inverse only)
         frame_.state = ContactState::pushed_past;
         break;
     }
@@ -260,7 +261,8 @@ const TrackedFrame& ContactTracker::step(const Placement& X, std::span<const Pla
       case Status::second_contact: record_converged(nullptr); break;
       case Status::no_contact: frame_.state = ContactState::free; break;
       case Status::slipped_off:
-      case Status::not_converged: frame_.state = ContactState::pushed_past; break;
+      case Status::not_converged:
+      case Status::underdetermined: frame_.state = ContactState::pushed_past; break;
     }
     s.contact_state = frame_.state;
     if (frame_.state == ContactState::free) forget_contact();

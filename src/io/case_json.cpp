@@ -108,7 +108,7 @@ json matrix_to_json(const Eigen::Matrix3d& M) {
 
 json to_json(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 
-Whisker whisker_from_json(const json& j) {
+Whisker whisker_from_json(const json& j, std::vector<std::string>* warnings) {
   reject_unknown(j, "whisker",
                  {"points", "length", "curvature", "cubic", "pose", "links", "base_radius", "taper_ratio", "radii",
                   "youngs_modulus", "poisson_ratio", "base", "base_stiffness", "scheme"});
@@ -141,6 +141,7 @@ Whisker whisker_from_json(const json& j) {
   }
   std::optional<Pose> pose;
   if (j.contains("pose")) pose = pose_from_json(j.at("pose"));
+  if (pose && warnings) *warnings = pose_warnings(*pose, "whisker.pose");
 
   const int shapes = int(j.contains("points")) + int(j.contains("length"));
   if (shapes != 1) fail("whisker needs exactly one of \"points\" or \"length\" (with \"curvature\" or \"cubic\")");
@@ -258,7 +259,35 @@ Case case_from_json(const json& j) {
     if (oj.contains("compute_shape")) o.compute_shape = io::json_bool(oj.at("compute_shape"), "options.compute_shape");
     validate(o);
   }
-  return Case{whisker_from_json(j.at("whisker")), load_from_json(j.at("load")), o};
+  std::vector<std::string> warnings;
+  Whisker w = whisker_from_json(j.at("whisker"), &warnings);
+  return Case{std::move(w), load_from_json(j.at("load")), o, std::move(warnings)};
+}
+
+std::vector<std::string> case_warnings(const Case& c) {
+  std::vector<std::string> out = plausibility_warnings(c.whisker);
+  out.insert(out.end(), c.input_warnings.begin(), c.input_warnings.end());
+  const Eigen::Vector3d base = c.whisker.placement().p_W_base;
+  const double L = c.whisker.length();
+  auto add = [&](std::optional<std::string> m) {
+    if (m) out.push_back(std::move(*m));
+  };
+  std::visit(
+      [&](const auto& l) {
+        using T = std::decay_t<decltype(l)>;
+        if constexpr (std::is_same_v<T, ForceLoad>)
+          add(force_warning("load.force", l.force));
+        else if constexpr (std::is_same_v<T, DeadLoad> || std::is_same_v<T, BaseWrenchLoad>)
+          add(force_warning("load.force", l.force.norm()));
+        else if constexpr (std::is_same_v<T, PointLoad>)
+          add(reach_warning("load.point", l.point, Eigen::Vector3d::Zero(), base, L));
+        else if constexpr (std::is_same_v<T, EdgeLoad> || std::is_same_v<T, FrictionalEdgeLoad>)
+          add(reach_warning("load edge (load.point, load.direction)", l.edge.point, l.edge.direction, base, L));
+        else
+          (void)l;  // objects: their own geometry (docs/objects.md)
+      },
+      c.load);
+  return out;
 }
 
 Solution solve_case(const Case& c) {
@@ -374,15 +403,18 @@ json base_wrench_to_json(const BaseWrenchResult& r) {
 json case_result_to_json(const Case& c, const Solution& s) {
   json j = solution_to_json(s);
   if (const auto* l = std::get_if<ObjectLoad>(&c.load)) j["object"] = io::shape_to_json(*l->shape);
-  j["warnings"] = plausibility_warnings(c.whisker);
+  j["warnings"] = case_warnings(c);
   return j;
 }
 
 json solve_case_to_json(const Case& c) {
   if (const auto* l = std::get_if<BaseWrenchLoad>(&c.load)) {
-    json j =
-        base_wrench_to_json(solve_base_wrench(c.whisker, l->force, l->moment, base_wrench_options(*l, c.options)));
-    j["warnings"] = plausibility_warnings(c.whisker);
+    const BaseWrenchResult r =
+        solve_base_wrench(c.whisker, l->force, l->moment, base_wrench_options(*l, c.options));
+    json j = base_wrench_to_json(r);
+    std::vector<std::string> warnings = base_wrench_warnings(r);  // first: the numbers are not the contact
+    for (std::string& w : case_warnings(c)) warnings.push_back(std::move(w));
+    j["warnings"] = std::move(warnings);
     return j;
   }
   return case_result_to_json(c, solve_case(c));

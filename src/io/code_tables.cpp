@@ -23,7 +23,7 @@ std::string table(std::initializer_list<Enum> values, std::string prefix = {}) {
 
 std::string status_code_table() {
   return table({Status::converged, Status::no_contact, Status::slipped_off, Status::not_converged,
-                Status::second_contact},
+                Status::second_contact, Status::underdetermined},
                std::to_string(kNotSolvedCode) + " not_in_contact");
 }
 

@@ -14,7 +14,8 @@ namespace vibrissa::io {
 /// Code of a frame without a solve, "not_in_contact" (solver status datasets).
 inline constexpr std::int8_t kNotSolvedCode = -1;
 
-/// "-1 not_in_contact, 0 converged, 1 no_contact, 2 slipped_off, 3 not_converged"
+/// "-1 not_in_contact, 0 converged, 1 no_contact, 2 slipped_off, 3 not_converged, 4 second_contact,
+/// 5 underdetermined" (one table for every solver status; the forward solves never give 5)
 std::string status_code_table();
 /// "0 free, 1 contact, 2 pushed_past"
 std::string contact_state_code_table();

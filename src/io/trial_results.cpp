@@ -8,6 +8,7 @@
 #include "code_tables.hpp"
 #include "csv_cells.hpp"
 #include "vibrissa/io/trial_io.hpp"
+#include "vibrissa/trial/plausibility.hpp"
 #include "vibrissa/trial/trial_run.hpp"
 #include "vibrissa/io/output_folder.hpp"
 #include "vibrissa/io/figure_files.hpp"
@@ -378,6 +379,7 @@ nlohmann::json summary_json(const PipelineResult& r, const TrialAnalysis& a) {
   j["shape_error_mean_m"] = {{"contact_point", num(a.shape_error.contact_point_mean)},
                              {"edge", num(a.shape_error.edge_mean)},
                              {"frictional_edge", num(a.shape_error.frictional_mean)}};
+  j["warnings"] = trial::trial_warnings(t);  // likely unit slips of the input (trial/plausibility.hpp)
   NanReasons why;
   explain_nulls(r, a, why);
   why.attach(j);

@@ -11,6 +11,7 @@
 #include <Eigen/SVD>
 
 #include "contact_problem.hpp"
+#include "vibrissa/core/plausibility.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
@@ -439,10 +440,13 @@ BaseWrenchResult solve_base_wrench(const Whisker& w, const Placement& X, const E
                        "optimum): no contact found that explains the signals");
     return out;
   }
-  detail::set_status(out.solution, Status::converged,
-                     out.identifiability.identifiable
-                         ? "base wrench: least-squares fit of the base signals (residual = sqrt(chi2))"
-                         : "base wrench: fitted, but the signals do not determine (s, f, angle): see null_direction");
+  if (out.identifiability.identifiable)
+    detail::set_status(out.solution, Status::converged,
+                       "base wrench: least-squares fit of the base signals (residual = sqrt(chi2))");
+  else
+    detail::set_status(out.solution, Status::underdetermined,
+                       "base wrench: the signals do not determine the contact (s, f, angle): this fit is one "
+                       "of a family along identifiability.null_direction");
   return out;
 }
 
@@ -462,10 +466,21 @@ std::vector<BaseWrenchResult> solve_base_wrench_series(const Whisker& w, const P
     counter.check();
     out.push_back(solve_base_wrench(w, X, F_base_W[k], M_base_W[k], options, warm));
     const Solution& s = out.back().solution;
-    warm = s.status == Status::converged ? &s.state : nullptr;
+    warm = s.status == Status::converged || s.status == Status::underdetermined ? &s.state : nullptr;
     counter.advance();
   }
   return out;
+}
+
+std::vector<std::string> base_wrench_warnings(const BaseWrenchResult& r) {
+  if (r.solution.status != Status::underdetermined) return {};
+  const Eigen::Vector3d& n = r.identifiability.null_direction;
+  return {"underdetermined: the signals " + r.signals.name() + " (" + std::to_string(r.identifiability.signals) +
+          " equations) cannot determine the contact (s, f, angle); the fit at s = " +
+          format_significant(r.solution.arc_length * 1e3) + " mm is one of a family (null direction ds/L " +
+          format_significant(n.x(), 2) + ", df/F0 " + format_significant(n.y(), 2) + ", dangle " +
+          format_significant(n.z(), 2) +
+          "), not the contact: fit more signals (Fx or Mx with My, Mz; docs/inverse.md)"};
 }
 
 }  // namespace vibrissa

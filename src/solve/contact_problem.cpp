@@ -142,7 +142,8 @@ void set_status(Solution& out, Status status, std::string_view message) {
   out.message = message;
   switch (status) {
     case Status::converged:
-    case Status::second_contact: out.contact_state = ContactState::contact; break;
+    case Status::second_contact:
+    case Status::underdetermined: out.contact_state = ContactState::contact; break;
     case Status::slipped_off: out.contact_state = ContactState::pushed_past; break;
     case Status::no_contact:
     case Status::not_converged: out.contact_state = ContactState::free; break;

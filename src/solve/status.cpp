@@ -14,6 +14,7 @@ std::string_view to_string(Status status) {
     case Status::slipped_off: return "slipped_off";
     case Status::not_converged: return "not_converged";
     case Status::second_contact: return "second_contact";
+    case Status::underdetermined: return "underdetermined";
   }
   return "not_converged";
 }
@@ -38,7 +39,7 @@ std::string_view to_string(FrictionState state) {
 
 Status status_from_string(std::string_view name) {
   for (Status s : {Status::converged, Status::no_contact, Status::slipped_off, Status::not_converged,
-                   Status::second_contact})
+                   Status::second_contact, Status::underdetermined})
     if (to_string(s) == name) return s;
   throw std::invalid_argument("status: unknown value \"" + std::string(name) + "\"");
 }

@@ -7,6 +7,7 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/friction_analysis.cpp
   ${CMAKE_CURRENT_LIST_DIR}/kinematic_prediction.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pipeline.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/plausibility.cpp
   ${CMAKE_CURRENT_LIST_DIR}/preprocess.cpp
   ${CMAKE_CURRENT_LIST_DIR}/roll_regression.cpp
   ${CMAKE_CURRENT_LIST_DIR}/shape_error.cpp

@@ -103,3 +103,55 @@ TEST(Plausibility, WarnsAboutLikelyUnitSlips) {
   EXPECT_NE(w[0].find("base radius 0.002 m"), std::string::npos);
   EXPECT_NE(w[1].find("Young's modulus 3.3 Pa"), std::string::npos);
 }
+
+namespace {
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+}  // namespace
+
+TEST(Plausibility, LengthWarningsSuggestTheUnitThatFits) {
+  EXPECT_FALSE(length_warning("whisker length", 0.035));
+  // Whisker.from_parabola(40, 12): mm given as metres.
+  const auto metres = length_warning("whisker length", 40.0);
+  ASSERT_TRUE(metres);
+  EXPECT_TRUE(has(*metres, "whisker length 40 m")) << *metres;
+  EXPECT_TRUE(has(*metres, "did you mean 40 mm (a length in mm given as metres)?")) << *metres;
+  // A trial in metres declared length=mm: a 35 um whisker.
+  const auto micro = length_warning("whisker length", 35e-6);
+  ASSERT_TRUE(micro);
+  EXPECT_TRUE(has(*micro, "(35 um)")) << *micro;
+  EXPECT_TRUE(has(*micro, "did you mean 35 mm (metres given or declared as mm)?")) << *micro;
+  EXPECT_TRUE(has(*length_warning("whisker length", 30000.0), "did you mean 30 mm (a length in um given as metres)"));
+}
+
+TEST(Plausibility, PoseForceAngleSeriesAndReach) {
+  // "theta": 10 in a pose: degrees given as radians.
+  const auto pose = pose_warnings(Pose{{0, 0, 0}, 10.0, 0.2, -4.0}, "whisker.pose");
+  ASSERT_EQ(pose.size(), 2U);
+  EXPECT_TRUE(has(pose[0], "whisker.pose.theta 10 rad (573 deg) is beyond +-pi: did you mean 10 deg")) << pose[0];
+  EXPECT_TRUE(has(pose[1], "whisker.pose.zeta -4 rad")) << pose[1];
+  EXPECT_TRUE(pose_warnings(Pose{{0, 0, 0}, 3.0, -1.5, 3.1}, "pose").empty());
+
+  EXPECT_FALSE(force_warning("load.force", 2e-3));
+  EXPECT_TRUE(has(*force_warning("load.force", 5.0), "load.force 5 N is above the plausible 0.1 N"));
+
+  // Radians declared as degrees: whisking over 0.2..1.9 rad read as 0.2..1.9 deg.
+  std::vector<double> theta;
+  for (int i = 0; i <= 50; ++i) theta.push_back((0.2 + 1.7 * i / 50.0) * 3.141592653589793 / 180.0);
+  const auto rad_as_deg = angle_series_warning("theta", theta, true);
+  ASSERT_TRUE(rad_as_deg);
+  EXPECT_TRUE(has(*rad_as_deg, "theta stays within +-1.9 deg although the file declares angle=deg")) << *rad_as_deg;
+  EXPECT_FALSE(angle_series_warning("theta", theta, false));  // small angles declared in radians are possible
+  for (double& v : theta) v *= 180.0 / 3.141592653589793 * 57.29577951308232;  // degrees declared as radians
+  EXPECT_TRUE(has(*angle_series_warning("theta", theta, false), "degrees declared as radians (angle=rad)?"));
+  EXPECT_FALSE(angle_series_warning("theta", {0.1, std::nan(""), 1.2}, true));  // 69 deg: a real series
+
+  // Python's peg=[16.6, 11.2, 0] (mm given as metres) next to a 30 mm whisker based near the origin.
+  const Eigen::Vector3d base(0.001, 0.002, 0.0), up = Eigen::Vector3d::UnitZ();
+  const auto far = reach_warning("edge 1 (peg)", {16.6, 11.2, 0.0}, up, base, 0.03);
+  ASSERT_TRUE(far);
+  EXPECT_TRUE(has(*far, "edge 1 (peg) passes 20.02 m from the whisker base, beyond the reach of a 30 mm whisker"))
+      << *far;
+  EXPECT_TRUE(has(*far, "positions in mm given as metres?")) << *far;
+  EXPECT_FALSE(reach_warning("edge 1 (peg)", {0.0166, 0.0112, 5.0}, up, base, 0.03));  // the line, not the point
+  EXPECT_TRUE(reach_warning("load.point", {0.0166, 0.0112, 5.0}, Eigen::Vector3d::Zero(), base, 0.03));
+}

@@ -127,7 +127,7 @@ TEST(BaseWrench, BendingMomentsAloneAreUnderdeterminedAlongTheNullDirection) {
   BaseWrenchOptions o;
   o.signals = SignalSet::bending();
   const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W, o);
-  ASSERT_EQ(inv.solution.status, Status::converged);
+  ASSERT_EQ(inv.solution.status, Status::underdetermined);
   EXPECT_FALSE(inv.identifiability.identifiable);
   EXPECT_TRUE(std::isinf(inv.identifiability.condition_number));
   // Every reported fit reproduces M_y and M_z.
@@ -150,6 +150,32 @@ TEST(BaseWrench, BendingMomentsAloneAreUnderdeterminedAlongTheNullDirection) {
   // ...while a step across it does not.
   const Solution c = solve_force(w, x.force_magnitude * (1 + 1e-3), x.arc_length, x.angle);
   EXPECT_GT(std::abs(c.whisker_frame.MB - x.whisker_frame.MB), 1e-4 * x.whisker_frame.MB);
+}
+
+TEST(BaseWrench, BendingMomentsAloneAreNeverReportedConverged) {
+  // The case of issue 22: from My, Mz alone a fit far from the truth (s = 21.6 mm) explains the signals
+  // exactly; it must be flagged underdetermined, with a warning naming the signals, and never converged.
+  const Whisker w = test::rat_whisker();
+  BaseWrenchOptions o;
+  o.signals = SignalSet::bending();
+  for (double s : {0.0054, 0.0216, 0.032})
+    for (double zeta : {deg(40), deg(-110)}) {
+      const Solution fwd = solve_force(w, 1e-4, s, zeta);
+      const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W, o);
+      EXPECT_EQ(inv.solution.status, Status::underdetermined) << "s=" << s << " zeta=" << zeta;
+      EXPECT_EQ(inv.solution.contact_state, ContactState::contact);
+      EXPECT_LT(inv.chi2, 1e-6);  // the signals are explained...
+      const auto warnings = base_wrench_warnings(inv);  // ...and the user is told they do not locate the contact
+      ASSERT_EQ(warnings.size(), 1U);
+      EXPECT_EQ(warnings[0].rfind("underdetermined: the signals bending (2 equations)", 0), 0U) << warnings[0];
+    }
+  // Adding the axial force makes the same contact identifiable: converged, no warning.
+  const Solution fwd = solve_force(w, 1e-4, 0.0216, deg(40));
+  o.signals = SignalSet::bending_axial();
+  const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W, o);
+  EXPECT_EQ(inv.solution.status, Status::converged);
+  EXPECT_NEAR(inv.solution.arc_length, 0.0216, 1e-9);
+  EXPECT_TRUE(base_wrench_warnings(inv).empty());
 }
 
 TEST(BaseWrench, NoisySignalsGiveAStationaryFitNearTheTruth) {

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
@@ -63,19 +64,27 @@ struct Case {
   Whisker whisker;
   Load load;
   SolveOptions options;
+  /// Plausibility warnings only the reader can see (pose angles before they are wrapped into R_WB);
+  /// case_warnings adds those of the whisker and the load.
+  std::vector<std::string> input_warnings;
 };
 
-/// Whisker from the "whisker" object of a case.
-Whisker whisker_from_json(const nlohmann::json& j);
+/// Whisker from the "whisker" object of a case. `input_warnings`, if given, receives the plausibility
+/// warnings of its "pose" (angles beyond +-pi: degrees given as radians), which the Whisker cannot show.
+Whisker whisker_from_json(const nlohmann::json& j, std::vector<std::string>* input_warnings = nullptr);
 Load load_from_json(const nlohmann::json& j);
 /// Whole case; options default to find_other_roots = true.
 Case case_from_json(const nlohmann::json& j);
 
 Solution solve_case(const Case& c);
 
+/// Every plausibility warning of a case (core/plausibility.hpp): the whisker's, the pose's, and the load's
+/// (a force above 0.1 N, a point or edge out of the whisker's reach).
+std::vector<std::string> case_warnings(const Case& c);
+
 nlohmann::json solution_to_json(const Solution& s);
 /// The result file of `vibrissa solve`: solution_to_json, a "base_wrench" object for that mode, and
-/// "warnings", the plausibility warnings of the case's whisker (core/plausibility.hpp; empty when none).
+/// "warnings" (the inverse's base_wrench_warnings first, then case_warnings; empty when none).
 nlohmann::json solve_case_to_json(const Case& c);
 /// solution_to_json plus the case's "warnings".
 nlohmann::json case_result_to_json(const Case& c, const Solution& s);

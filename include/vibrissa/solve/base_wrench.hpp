@@ -126,4 +126,9 @@ std::vector<BaseWrenchResult> solve_base_wrench_series(const Whisker& whisker, c
 
 void validate(const BaseWrenchOptions& options);
 
+/// What a user must read before the numbers (docs/inverse.md): for status underdetermined, one sentence
+/// naming the signals, the fitted arc length and the null direction; empty otherwise. `vibrissa solve` puts
+/// these first in "warnings" (and on standard error), Python raises them with warnings.warn.
+std::vector<std::string> base_wrench_warnings(const BaseWrenchResult& result);
+
 }  // namespace vibrissa

@@ -12,6 +12,9 @@ enum class Status {
   /// object modes: the single-contact equilibrium would put another part of the whisker inside the object
   /// (Solution::second_contact_arc_length says where); its loads are reported, flagged by this status
   second_contact,
+  /// base-wrench inverse: a least-squares optimum that explains the signals, but the signals cannot determine
+  /// the contact (the Jacobian has rank < 3, e.g. bending moments alone): one fit of a family, not *the* contact
+  underdetermined,
 };
 
 std::string_view to_string(Status status);
