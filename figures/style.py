@@ -82,6 +82,19 @@ def series_styles():
     return [dict(color=c, ls=d) for d in dashes for c in colours]
 
 
+def distinct_styles(n):
+    """n series that each need their own colour (one per whisker): the Okabe–Ito colours up to 7, else the 20
+    colours of matplotlib's tab20 (its ten darker shades first, then the lighter ones), each also with its own
+    line style of four in turn so that neighbours differ in greyscale; past 20 the colours repeat with another
+    dash pattern."""
+    if n <= 7:
+        return series_styles()[:n]
+    tab20 = plt.get_cmap("tab20").colors
+    colours = list(tab20[0::2]) + list(tab20[1::2])
+    dashes = ["-", "--", "-.", ":"]
+    return [dict(color=colours[k % 20], ls=dashes[(k + k // 20) % 4]) for k in range(n)]
+
+
 def apply():
     """Matplotlib defaults for paper figures (sizes in points, readable at 7 in wide)."""
     plt.rcParams.update({
@@ -167,6 +180,34 @@ def one_png_main(doc, load, build, argv=None):
     fig, _ = build(load(args.array_h5))
     save(fig, args.out, dpi=args.dpi)
     print("wrote", args.out)
+
+
+def save_all(drawers, outdir, dpi=DEFAULT_DPI, jobs=0):
+    """Draws and saves {file name: function returning a Figure} in `outdir`, in `jobs` processes side by side
+    (0: one per CPU). The processes are forked after the data and matplotlib are loaded, so each starts at
+    once; the figures are split round-robin in the given order (put the slowest first). Raises if one failed."""
+    names = list(drawers)
+    jobs = min(len(names), jobs or len(os.sched_getaffinity(0)))
+    if jobs <= 1 or not hasattr(os, "fork"):
+        for name in names:
+            save(drawers[name](), os.path.join(outdir, name), dpi=dpi)
+        return
+    children = []
+    for j in range(jobs):
+        pid = os.fork()
+        if pid == 0:  # child: draw every jobs-th figure, then leave without running the parent's cleanups
+            code = 0
+            try:
+                for name in names[j::jobs]:
+                    save(drawers[name](), os.path.join(outdir, name), dpi=dpi)
+            except BaseException as error:  # noqa: BLE001  (reported, and the exit status says so)
+                print(f"figure process {j}: {error!r}", flush=True)
+                code = 1
+            os._exit(code)
+        children.append(pid)
+    failed = [pid for pid in children if os.waitpid(pid, 0)[1] != 0]
+    if failed:
+        raise RuntimeError(f"{len(failed)} of {jobs} figure processes failed")
 
 
 def save(fig, path, dpi=DEFAULT_DPI):

@@ -218,7 +218,7 @@ def test_array_animation_views_fps_and_frames(cli, tmp_path):
     path = tmp_path / "scene.json"
     path.write_text(json.dumps(config))
     out = tmp_path / "arr"
-    done = subprocess.run([cli, "array", path, "--out", out, "--frames", "9", "--fps", "5", "--figure-dpi", "60"],
+    done = subprocess.run([cli, "array", path, "--out", out, "--animation", "--frames", "9", "--fps", "5", "--figure-dpi", "60"],
                           capture_output=True, text=True, timeout=300)
     assert done.returncode == 0 and "failed" not in done.stderr, done.stderr
     probe = subprocess.run(["ffprobe", "-v", "error", "-select_streams", "v:0", "-count_frames", "-show_entries",
