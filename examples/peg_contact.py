@@ -66,10 +66,10 @@ def main() -> None:
     deg = np.degrees(theta)
     ax_ft.plot(deg, np.where(ok, sweep.whisker_frame.FT * 1e6, np.nan), color="#0072B2")
     ax_ft.set_ylabel("transverse force $F_T$ [µN]")
-    ax_ft.set_title("base force while protracting past the peg")
+    ax_ft.set_title("base force while protracting")
     ax_mb.plot(deg, np.where(ok, sweep.whisker_frame.MB * 1e9, np.nan), color="#D55E00")
     ax_mb.set_ylabel("bending moment $M_B$ [nN·m]")
-    ax_mb.set_title("base moment while protracting past the peg")
+    ax_mb.set_title("base moment while protracting")
     for ax in (ax_ft, ax_mb):
         ax.set_xlabel("protraction θ [deg]")
         ax.grid(alpha=0.3)

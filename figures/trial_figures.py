@@ -281,18 +281,19 @@ def friction_figure(d, summary, window):
     ax.legend(loc="upper right")
     ax = axes[2]
     # Binned over the span of the used values (summary.json's histogram is fixed at 0-3 in 0.1 steps, one
-    # bar when mu is well defined): 25 bins between the 0.5th and 99.5th percentiles, the rest in the end bins.
+    # bar when mu is well defined): 25 bins between the 0.5th and 99.5th percentiles (values beyond clipped to them).
     all_used = d["mu_used"] > 0.5
     mu_used = mu[all_used & np.isfinite(mu)]
     if mu_used.size:
         lo, hi = np.percentile(mu_used, [0.5, 99.5])
         if not hi > lo:
             lo, hi = lo - 0.01, hi + 0.01
-        edges = np.linspace(lo, hi, 26)
+        width = (hi - lo) / 25
+        edges = np.linspace(lo - width, hi + width, 28)  # an empty-looking bin either side: no bar on the frame
         counts, _ = np.histogram(np.clip(mu_used, lo, hi), bins=edges)
         ax.bar(edges[:-1], counts, width=np.diff(edges), align="edge", color=style.OKABE_ITO["blue"],
                edgecolor="white", lw=0.5, label=f"frames used ({mu_used.size})")
-        ax.set_xlim(edges[0] - 0.05 * (hi - lo), edges[-1] + 0.05 * (hi - lo))
+        ax.set_xlim(edges[0], edges[-1])
     if fr.get("median") is not None:
         ax.axvline(fr["median"], color=style.OKABE_ITO["vermillion"], ls="--", lw=1.5,
                    label=f"median {fr['median']:.3f}")
