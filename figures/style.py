@@ -106,9 +106,27 @@ def apply():
 
 
 def legend_below(fig, handles, ncol=None):
-    """One legend for all panels, centred below the figure (kept in the PNG by the tight bounding box)."""
+    """One legend for all panels, centred below the figure (kept in the PNG by the tight bounding box; with
+    fixed_layout at the bottom edge, in the space it keeps)."""
+    if getattr(fig, "vibrissa_fixed_layout", False):
+        return fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 0.0), frameon=False,
+                          ncol=ncol or len(handles))
     return fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0), frameon=False,
                       ncol=ncol or len(handles))
+
+
+def fixed_layout(fig, left_in=0.8, right_in=0.15, top_in=0.6, bottom_in=0.5, legend_in=0.35, hspace=None,
+                 wspace=None):
+    """Margins given in inches instead of computed: save() then skips tight_layout and the tight bounding box,
+    which measure every text of the figure twice (about half of the drawing time of a six-panel figure).
+    `legend_in` is kept free below the axes for legend_below(fig, ..., inside=True)."""
+    w, h = fig.get_size_inches()
+    fig.set_size_inches(w, h + legend_in)
+    h += legend_in
+    fig.subplots_adjust(left=left_in / w, right=1 - right_in / w, top=1 - top_in / h,
+                        bottom=(bottom_in + legend_in) / h, hspace=hspace, wspace=wspace)
+    fig.vibrissa_fixed_layout = True
+    return fig
 
 
 def integer_ticks(axis):
@@ -212,7 +230,10 @@ def save_all(drawers, outdir, dpi=DEFAULT_DPI, jobs=0):
 
 def save(fig, path, dpi=DEFAULT_DPI):
     """Lays the figure out, writes it atomically (atomic_save) and closes it."""
-    fig.tight_layout()
+    fixed = getattr(fig, "vibrissa_fixed_layout", False)
+    if not fixed:
+        fig.tight_layout()
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
-    save_figure(fig, path, dpi=dpi)
+    # PNG at zlib level 1: lossless as level 6, a few percent larger, ~0.1 s less per figure
+    save_figure(fig, path, dpi=dpi, pil_kwargs={"compress_level": 1}, **({"bbox_inches": None} if fixed else {}))
     plt.close(fig)

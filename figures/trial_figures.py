@@ -16,6 +16,7 @@ import h5py
 import numpy as np
 import style
 from matplotlib import pyplot as plt
+from matplotlib.collections import LineCollection
 
 OVERVIEW_MAX_S = 2.0  # longer trials: time series in a window, plus the per-whisk overlay
 WINDOW_S = 1.0
@@ -130,6 +131,7 @@ def time_series(d, modes, rows, window, title):
     sel = (d["time"] >= start) & (d["time"] <= end)
     t = d["time"][sel] * style.SCALE[unit]
     fig, axes = plt.subplots(len(rows), 1, figsize=(style.PAPER_WIDTH_IN, 1.45 * len(rows) + 0.9), sharex=True)
+    style.fixed_layout(fig, top_in=0.55 if any(name in ANGLES for name, _, _ in rows) else 0.4, hspace=0.18)
     for ax, (name, u, quantity) in zip(axes, rows):
         drawn = False
         for m in modes:
@@ -223,15 +225,19 @@ def per_whisk_figure(d, modes):
     """Every whisk of the trial overlaid, time from its first contact frame (the full-trial overview)."""
     periods = int(np.max(d["period"])) + 1
     fig, axes = plt.subplots(2, 2, figsize=(style.PAPER_WIDTH_IN, 5.6), sharex=True)
+    style.fixed_layout(fig, top_in=0.55, bottom_in=0.55, hspace=0.12, wspace=0.28)
     axes = axes.ravel()
     alpha = float(np.clip(6.0 / max(periods, 1), 0.12, 0.8))
+    starts = [np.flatnonzero(d["period"] == p) for p in range(periods)]
     for ax, (name, unit, quantity) in zip(axes, OVERLAY_ROWS):
         for m in modes:
             v = signal(d, modes, m, name, unit)
-            for p in range(periods):
-                idx = np.flatnonzero(d["period"] == p)
-                ax.plot((d["time"][idx] - d["time"][idx[0]]) * style.SCALE["ms"], v[idx], color=m["color"],
-                        ls=m["ls"], lw=m["lw"] * 0.6, alpha=alpha, zorder=m["zorder"])
+            # one LineCollection per mode and panel (not a Line2D per whisk): drawn in one pass
+            segments = [np.column_stack([(d["time"][idx] - d["time"][idx[0]]) * style.SCALE["ms"], v[idx]])
+                        for idx in starts if idx.size]
+            ax.add_collection(LineCollection(segments, colors=m["color"], linestyles=m["ls"], linewidths=m["lw"] * 0.6,
+                                             alpha=alpha, zorder=m["zorder"]))
+        ax.autoscale_view()
         ax.set_ylabel(style.label(quantity, unit))
     for ax in axes[2:]:
         ax.set_xlabel(style.label("time since contact onset", "ms"))
