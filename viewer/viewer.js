@@ -136,7 +136,7 @@
     const c = meta.colour_by[state.colour];
     if (c.kind === "state") return tmpColour.set(STATE_COLOURS[data.state[w * nT + t]] || "#9a9a9a");
     const v = signalAt(c.signal, w, t), r = data.ranges[c.signal];
-    if (!Number.isFinite(v) || data.state[w * nT + t] === 0) return tmpColour.set("#c8c8c8");  // free: light grey
+    if (!Number.isFinite(v) || data.state[w * nT + t] !== 1) return tmpColour.set("#c8c8c8");  // not in contact: grey
     const x = c.abs ? Math.abs(v) / (r[2] || 1) : (v - r[0]) / ((r[1] - r[0]) || 1);
     return cmap(x, tmpColour);
   }

@@ -182,6 +182,10 @@ def test_second_head_pitch_is_shown_on_request(browser, scene):
     assert js(browser, "return window.vibrissaViewer.group") == 1
     labels = js(browser, "return Array.from(document.getElementById('pitch').options).map(o => o.text)")
     assert labels == ["+0.0°", "+10.0°"]
+    js(browser, """const s = document.getElementById('colour'); s.value = '0'; s.dispatchEvent(new Event('change'));
+                   window.vibrissaViewer.setFrame(60);""")
+    assert "M_B" in browser.find_element(By.ID, "legend-title").text
+    shot(browser, "pitch10_MB")
 
 
 def test_cli_view_writes_the_page(scene, tmp_path):

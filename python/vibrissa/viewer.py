@@ -292,7 +292,8 @@ def view(source, out=None):
     directory = path if path.is_dir() else path.parent
     if (directory / "array.h5").is_file() and (path.is_dir() or path.name == "array.h5"):
         return write_array_view(directory, out or directory / "view.html")
-    raise ValueError(f"{source}: not a result vibrissa can show (expected an array output directory or array.h5)")
+    raise ValueError(f"{source}: not a result vibrissa can show (expected a `vibrissa array` output directory or its "
+                     "array.h5; trial, sweep and solve outputs are not shown yet: docs/viewer.md)")
 
 
 def main(argv=None):
