@@ -24,7 +24,7 @@ namespace vibrissa::cli {
 namespace {
 struct ArrayArgs {
   std::string config, out = "array_results", pitches;
-  bool csv = false, no_figures = false, gif = false, print_default = false;
+  bool csv = false, no_figures = false, gif = false, animation = false, print_default = false;
   int threads = 0;
   int frames = -1;     ///< animation: rendered frames (output.render_count); -1: the config's
   double fps = 0.0;    ///< animation: frames per second (0: the script's default)
@@ -59,7 +59,9 @@ void register_array(CLI::App& app) {
   cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")
       ->check(CLI::Range(0, limits::max_threads));
   cmd->add_flag("--csv", a->csv, "also write array.csv (one row per pitch, whisker and frame)");
-  cmd->add_flag("--gif", a->gif, "write the animation as GIF instead of MP4");
+  cmd->add_flag("--animation", a->animation,
+                "also write the MP4 animation and its still (the interactive view.html is written by default)");
+  cmd->add_flag("--gif", a->gif, "write the animation, as GIF instead of MP4 (implies --animation)");
   cmd->add_option("--frames", a->frames, "animation: number of rendered frames (overrides output.render_count)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--fps", a->fps, "animation: frames per second (default 12)")->check(CLI::PositiveNumber);
@@ -118,16 +120,22 @@ void register_array(CLI::App& app) {
         if (a->figure_dpi > 0) args.insert(args.end(), {"--dpi", std::to_string(a->figure_dpi)});
         return args;
       };
-      std::vector<FigureScript> scripts = {{"array_traces.py", with_dpi({h5, (out / io::kArrayTracesFigure).string()})}};
-      std::vector<std::string> anim = {h5, (out / (a->gif ? io::kArrayAnimationGif : io::kArrayAnimationMp4)).string()};
-      if (a->fps > 0.0) anim.insert(anim.end(), {"--fps", std::to_string(a->fps)});
-      scripts.push_back({"array_animation.py", with_dpi(anim)});
+      // The interactive viewer (docs/viewer.md) first: it takes longest. Then the PNGs; the animation only
+      // when asked for (it took most of a default run's time).
+      std::vector<FigureScript> scripts = {
+          {.script = "vibrissa", .args = {"view", out.string(), "-o", (out / io::kArrayViewer).string()}, .module = true},
+          {.script = "array_traces.py", .args = with_dpi({h5, (out / io::kArrayTracesFigure).string()})}};
+      if (a->animation || a->gif) {
+        std::vector<std::string> anim = {h5, (out / (a->gif ? io::kArrayAnimationGif : io::kArrayAnimationMp4)).string()};
+        if (a->fps > 0.0) anim.insert(anim.end(), {"--fps", std::to_string(a->fps)});
+        scripts.push_back({.script = "array_animation.py", .args = with_dpi(anim)});
+      }
       if (config.pitches.size() > 1)
-        scripts.push_back({"array_pitch_sweep.py", with_dpi({h5, (out / io::kArrayPitchSweepFigure).string()})});
-      run_figure_scripts(scripts);  // side by side (separate Python processes); the animation takes longest
+        scripts.push_back({.script = "array_pitch_sweep.py", .args = with_dpi({h5, (out / io::kArrayPitchSweepFigure).string()})});
+      run_figure_scripts(scripts);  // side by side (separate Python processes)
     }
     std::cout << "wrote " << out.string() << "/{array.h5, summary.json, pitch_summary.csv"
-              << (a->csv ? ", array.csv" : "") << (a->no_figures ? "" : ", figures") << "}\n";
+              << (a->csv ? ", array.csv" : "") << (a->no_figures ? "" : ", view.html, figures") << "}\n";
   });
 }
 

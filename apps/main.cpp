@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   vibrissa::cli::register_reconstruct(app);
   vibrissa::cli::register_calibrate(app);
   vibrissa::cli::register_sweep(app);
+  vibrissa::cli::register_view(app);
 #endif
   try {
     // A killed run (Ctrl-C, kill, a closed terminal) removes its half-written temporaries and keeps the

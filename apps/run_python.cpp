@@ -69,22 +69,40 @@ int run_figure_script(const std::string& script, const std::vector<std::string>&
 void run_figure_scripts(const std::vector<FigureScript>& scripts) {
   std::vector<std::future<int>> running;
   for (const FigureScript& f : scripts)
-    running.push_back(std::async(std::launch::async, [&f] { return run_figure_script(f.script, f.args); }));
+    running.push_back(std::async(std::launch::async, [&f] {
+      return f.module ? run_python_module(f.script, f.args) : run_figure_script(f.script, f.args);
+    }));
   for (auto& r : running) r.get();
 }
 
-int exec_python_module(const std::string& module, const std::vector<std::string>& args) {
+namespace {
+// PYTHONPATH for the vibrissa package: installed beside this tool (<prefix>/<python install dir>/vibrissa),
+// else the build tree's. A package the interpreter finds by itself (the .deb's dist-packages) also works with
+// neither (then PYTHONPATH is returned unchanged).
+std::string package_python_path() {
   namespace fs = std::filesystem;
-  // The package: installed beside this tool (<prefix>/<python install dir>/vibrissa), else the build tree's.
-  // A package the interpreter finds by itself (the .deb's dist-packages) also works with neither.
   std::error_code ec;
   fs::path root = install_prefix() / VIBRISSA_PYTHON_PACKAGE_INSTALL_DIR;
   if (!fs::exists(root / "vibrissa" / "__init__.py", ec)) root = VIBRISSA_PYTHON_PACKAGE_BUILD_DIR;
-  if (fs::exists(root / "vibrissa" / "__init__.py", ec)) {
-    std::string path = root.string();
-    if (const char* old = std::getenv("PYTHONPATH"); old && *old) path.append(":").append(old);
-    ::setenv("PYTHONPATH", path.c_str(), 1);
-  }
+  const char* old = std::getenv("PYTHONPATH");
+  std::string path = old ? old : "";
+  if (fs::exists(root / "vibrissa" / "__init__.py", ec)) path = path.empty() ? root.string() : root.string() + ":" + path;
+  return path;
+}
+}  // namespace
+
+int run_python_module(const std::string& module, const std::vector<std::string>& args) {
+  std::ostringstream cmd;
+  cmd << "PYTHONPATH=" << quote(package_python_path()) << ' ' << quote(python_interpreter()) << " -m "
+      << quote(module);
+  for (const auto& a : args) cmd << ' ' << quote(a);
+  const int rc = std::system(cmd.str().c_str());
+  if (rc != 0) std::cerr << "vibrissa: warning: python -m " << module << " failed (exit " << rc << ")\n";
+  return rc;
+}
+
+int exec_python_module(const std::string& module, const std::vector<std::string>& args) {
+  if (const std::string path = package_python_path(); !path.empty()) ::setenv("PYTHONPATH", path.c_str(), 1);
   const std::string python = python_interpreter();
   std::vector<std::string> words{python, "-m", module};
   words.insert(words.end(), args.begin(), args.end());

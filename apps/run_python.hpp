@@ -12,11 +12,16 @@ namespace vibrissa::cli {
 int run_figure_script(const std::string& script, const std::vector<std::string>& args);
 
 struct FigureScript {
-  std::string script;
+  std::string script;  ///< a file in figures/, or with `module` a module of the vibrissa package
   std::vector<std::string> args;
+  bool module = false;  ///< run `python -m script args` with the package on PYTHONPATH (run_python_module)
 };
 /// Runs several scripts at once (each is its own Python process and writes its own file), as run_figure_script.
 void run_figure_scripts(const std::vector<FigureScript>& scripts);
+
+/// Runs `python -m <module> <args...>` with the vibrissa package of this installation (or build tree) on
+/// PYTHONPATH and returns its exit status (a warning is printed when it fails).
+int run_python_module(const std::string& module, const std::vector<std::string>& args);
 
 /// Replaces this process by `python -m <module> <args...>` with the vibrissa package of this installation (or
 /// build tree) on PYTHONPATH; returns 1 (after a message) only if the interpreter cannot be started.

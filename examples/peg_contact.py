@@ -58,15 +58,21 @@ def main() -> None:
     sweep = vibrissa.solve_edge_batch(whisker, peg.point, peg.direction, pose_angles=angles, approach_W=[0, 1, 0])
     print(sweep, "statuses:", dict(zip(*np.unique(sweep.status_names, return_counts=True))))
 
-    fig, (ax_shape, ax_signals) = plt.subplots(1, 2, figsize=(11, 4.5))
+    # One quantity per axis, each with its unit: the shape, then F_T and M_B over the protraction angle.
+    fig, (ax_shape, ax_ft, ax_mb) = plt.subplots(1, 3, figsize=(13, 4.2))
     plot_solution(solution, whisker, ax=ax_shape)
     ax_shape.set_title("whisker against a peg (top view)")
     ok = sweep.converged
-    ax_signals.plot(np.degrees(theta), np.where(ok, sweep.whisker_frame.FT * 1e6, np.nan), label="F_T [µN]")
-    ax_signals.plot(np.degrees(theta), np.where(ok, sweep.whisker_frame.MB * 1e9, np.nan), label="M_B [nN·m]")
-    ax_signals.set_xlabel("protraction θ [deg]")
-    ax_signals.set_title("base signals while protracting past the peg")
-    ax_signals.legend()
+    deg = np.degrees(theta)
+    ax_ft.plot(deg, np.where(ok, sweep.whisker_frame.FT * 1e6, np.nan), color="#0072B2")
+    ax_ft.set_ylabel("transverse force $F_T$ [µN]")
+    ax_ft.set_title("base force while protracting")
+    ax_mb.plot(deg, np.where(ok, sweep.whisker_frame.MB * 1e9, np.nan), color="#D55E00")
+    ax_mb.set_ylabel("bending moment $M_B$ [nN·m]")
+    ax_mb.set_title("base moment while protracting")
+    for ax in (ax_ft, ax_mb):
+        ax.set_xlabel("protraction θ [deg]")
+        ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(args.output, dpi=120)
     print(f"wrote {args.output}")

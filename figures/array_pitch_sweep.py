@@ -25,11 +25,14 @@ def build(d):
     pushed = (state == 2).any(axis=2).sum(axis=1)
     mean_peak = np.array([peak[p][contact[p].any(axis=1)].mean() if touching[p] else 0.0 for p in range(len(pitch))])
     keep = peak.max(axis=0) > 0
-    fig, (a0, a1) = plt.subplots(1, 2, figsize=(style.PAPER_WIDTH_IN, 4.2), gridspec_kw={"width_ratios": [1.4, 1]})
+    # one whisker name per row at 7 pt (print size): the figure grows with the number of whiskers drawn
+    height_in = max(4.2, 0.125 * int(keep.sum()) + 1.6)
+    fig, (a0, a1) = plt.subplots(1, 2, figsize=(style.PAPER_WIDTH_IN, height_in),
+                                 gridspec_kw={"width_ratios": [1.4, 1]})
     im = a0.imshow(peak[:, keep].T, aspect="auto", origin="lower", cmap=style.SEQUENTIAL_CMAP,
                    extent=(-0.5, len(pitch) - 0.5, -0.5, keep.sum() - 0.5))
     a0.set_xticks(range(len(pitch)), [f"{p:+.0f}" if round(p) else "0" for p in pitch])
-    a0.set_yticks(range(keep.sum()), [n for n, k in zip(names, keep) if k], fontsize=6)
+    a0.set_yticks(range(keep.sum()), [n for n, k in zip(names, keep) if k], fontsize=7)
     a0.set_xlabel(style.label("head pitch", "deg"))
     a0.set_ylabel("whisker")
     a0.grid(False)

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Base-signal traces per whisker (first head pitch): F_T, M_B, M_D, F_x and eq. (7) z_error while in
-contact, one line per whisker that touched the object (Okabe–Ito colours, then other dashes). M_D is unwrapped
+contact, one line per whisker that touched the object, each in its own colour (style.distinct_styles). M_D is unwrapped
 within each contact.
 
 usage: array_traces.py ARRAY_H5 OUT.png [--dpi DPI]
@@ -25,14 +25,14 @@ def build(d):
     t = d["time"] * style.SCALE["ms"]
     touched = [w for w in range(len(d["names"])) if (d["state"][w] == 1).any()]
     fig, axes = plt.subplots(len(ROWS), 1, figsize=(style.PAPER_WIDTH_IN, 8.5), sharex=True)
-    styles = style.series_styles()
+    styles = style.distinct_styles(len(touched))
     for k, w in enumerate(touched):
         on = d["state"][w] == 1
         for ax, (name, unit, _) in zip(axes, ROWS):
             y = d[name][w] * style.SCALE[unit]
             if name == "MD":
                 y = style.unwrap_deg(y, style.contact_runs(on))
-            ax.plot(t, np.where(on, y, np.nan), lw=1.2, label=d["names"][w], **styles[k % len(styles)])
+            ax.plot(t, np.where(on, y, np.nan), lw=1.2, label=d["names"][w], **styles[k])
     for ax, (_, unit, quantity) in zip(axes, ROWS):
         ax.set_ylabel(style.label(quantity, unit))
     axes[-1].set_xlabel(style.label("time", "ms"))

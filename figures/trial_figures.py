@@ -10,13 +10,13 @@ whole trial if it lasts at most OVERVIEW_MAX_S, else WINDOW_S from the first con
 overlays every whisk of the trial, aligned at contact onset. F_D and M_D are unwrapped within each whisk.
 """
 import json
-import os
 import sys
 
 import h5py
 import numpy as np
 import style
 from matplotlib import pyplot as plt
+from matplotlib.collections import LineCollection
 
 OVERVIEW_MAX_S = 2.0  # longer trials: time series in a window, plus the per-whisk overlay
 WINDOW_S = 1.0
@@ -43,16 +43,41 @@ def present_modes(d):
     return [m for m in style.MODES if m["prefix"] + "s_applied" in d]
 
 
+# F_D and M_D are directions of the force and moment in the base's plane: undefined where these vanish. At
+# contact onset and release they are tiny, and the direction of a near-zero vector swings freely (a jump of
+# ~30° per frame at onset, a plunge at release). Such frames are masked (not drawn): the first and last two
+# frames of every contact period (`period_edge`, also left out of the paper's analyses, spec §2.4) and frames
+# whose magnitude (F_T for F_D, M_B for M_D) is below ANGLE_MIN_FRACTION of its peak in that period.
+ANGLE_MAGNITUDE = {"FD": "FT", "MD": "MB"}
+ANGLE_MIN_FRACTION = 0.05
+ANGLE_MASK_NOTE = "F_D, M_D masked where undefined: first/last 2 frames of a contact, |F_T| or |M_B| < 5 % of its peak"
+
+
+def angle_mask(d, prefix, name):
+    """True where the angle column `name` (FD or MD) of a mode is defined well enough to draw."""
+    mag = np.abs(d[prefix + ANGLE_MAGNITUDE[name]])
+    ok = d["period_edge"] < 0.5
+    for p in np.unique(d["period"][d["period"] >= 0]):
+        idx = d["period"] == p
+        peak = np.nanmax(mag[idx]) if np.isfinite(mag[idx]).any() else 0.0
+        ok[idx] &= mag[idx] >= ANGLE_MIN_FRACTION * peak
+    return ok
+
+
 def signal(d, modes, mode, name, unit):
-    """Column `name` of `mode` in display units; angles unwrapped per contact period, the modes after the
-    first one drawn on the first one's branch."""
+    """Column `name` of `mode` in display units; angles masked where undefined (angle_mask), unwrapped per
+    contact period, the modes after the first one drawn on the first one's branch."""
     v = d[mode["prefix"] + name]
     if name not in ANGLES:
         return v * style.SCALE[unit]
+
+    def masked(m):
+        return np.where(angle_mask(d, m["prefix"], name), np.degrees(d[m["prefix"] + name]), np.nan)
+
     ref = None
     if mode is not modes[0]:
-        ref = style.unwrap_deg(np.degrees(d[modes[0]["prefix"] + name]), d["period"])
-    return style.unwrap_deg(np.degrees(v), d["period"], reference=ref)
+        ref = style.unwrap_deg(masked(modes[0]), d["period"])
+    return style.unwrap_deg(masked(mode), d["period"], reference=ref)
 
 
 # --- time windows ---------------------------------------------------------------------------------------
@@ -106,6 +131,7 @@ def time_series(d, modes, rows, window, title):
     sel = (d["time"] >= start) & (d["time"] <= end)
     t = d["time"][sel] * style.SCALE[unit]
     fig, axes = plt.subplots(len(rows), 1, figsize=(style.PAPER_WIDTH_IN, 1.45 * len(rows) + 0.9), sharex=True)
+    style.fixed_layout(fig, top_in=0.55 if any(name in ANGLES for name, _, _ in rows) else 0.4, hspace=0.18)
     for ax, (name, u, quantity) in zip(axes, rows):
         drawn = False
         for m in modes:
@@ -121,7 +147,10 @@ def time_series(d, modes, rows, window, title):
         ax.set_ylabel(style.label(quantity, u))
     axes[-1].set_xlabel(style.label("time", unit))
     axes[-1].set_xlim(start * style.SCALE[unit], end * style.SCALE[unit])
-    fig.suptitle(f"{title} — {what}")
+    if any(name in ANGLES for name, _, _ in rows):
+        fig.suptitle(f"{title} — {what}\n({ANGLE_MASK_NOTE})", fontsize=9)
+    else:
+        fig.suptitle(f"{title} — {what}")
     mode_legend(fig, modes)
     return fig
 
@@ -153,7 +182,8 @@ def scatter_fit(x, y, used, fits, labels, title):
         ax.scatter(x[ok & ~used], y[ok & ~used], s=12, lw=0.7, color=style.EXCLUDED["color"],
                    marker=style.EXCLUDED["marker"], label=f"not fitted: first/last 2 frames of a contact "
                    f"({int((ok & ~used).sum())})", gid="excluded")
-    xlim, ylim = style.data_limits(x[ok]), style.data_limits(y[ok])
+    # one scale on both axes, so that the identity line is the diagonal and slopes read true
+    xlim = ylim = style.data_limits(x[ok], y[ok])
     ax.plot(xlim, xlim, label="identity", **style.IDENTITY)
     second = dict(style.FIT, color=style.OKABE_ITO["bluish_green"], ls=(0, (1, 1)), lw=1.8)
     for fit, name, line in zip(fits, labels, (style.FIT, second)):
@@ -161,6 +191,7 @@ def scatter_fit(x, y, used, fits, labels, title):
             draw_fit(ax, fit, xlim, name, **line)
     ax.set_xlim(xlim)
     ax.set_ylim(ylim)
+    ax.set_aspect("equal", adjustable="box")
     ax.set_title(title)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=7, frameon=False)
     return fig, ax
@@ -194,19 +225,24 @@ def per_whisk_figure(d, modes):
     """Every whisk of the trial overlaid, time from its first contact frame (the full-trial overview)."""
     periods = int(np.max(d["period"])) + 1
     fig, axes = plt.subplots(2, 2, figsize=(style.PAPER_WIDTH_IN, 5.6), sharex=True)
+    style.fixed_layout(fig, top_in=0.55, bottom_in=0.55, hspace=0.12, wspace=0.28)
     axes = axes.ravel()
     alpha = float(np.clip(6.0 / max(periods, 1), 0.12, 0.8))
+    starts = [np.flatnonzero(d["period"] == p) for p in range(periods)]
     for ax, (name, unit, quantity) in zip(axes, OVERLAY_ROWS):
         for m in modes:
             v = signal(d, modes, m, name, unit)
-            for p in range(periods):
-                idx = np.flatnonzero(d["period"] == p)
-                ax.plot((d["time"][idx] - d["time"][idx[0]]) * style.SCALE["ms"], v[idx], color=m["color"],
-                        ls=m["ls"], lw=m["lw"] * 0.6, alpha=alpha, zorder=m["zorder"])
+            # one LineCollection per mode and panel (not a Line2D per whisk): drawn in one pass
+            segments = [np.column_stack([(d["time"][idx] - d["time"][idx[0]]) * style.SCALE["ms"], v[idx]])
+                        for idx in starts if idx.size]
+            ax.add_collection(LineCollection(segments, colors=m["color"], linestyles=m["ls"], linewidths=m["lw"] * 0.6,
+                                             alpha=alpha, zorder=m["zorder"]))
+        ax.autoscale_view()
         ax.set_ylabel(style.label(quantity, unit))
     for ax in axes[2:]:
         ax.set_xlabel(style.label("time since contact onset", "ms"))
-    fig.suptitle(f"Fig. 3b per whisk: all {periods} contact periods overlaid, aligned at contact onset")
+    fig.suptitle(f"Fig. 3b per whisk: all {periods} contact periods overlaid, aligned at contact onset\n"
+                 f"({ANGLE_MASK_NOTE})", fontsize=8)
     mode_legend(fig, modes)
     return fig
 
@@ -250,11 +286,20 @@ def friction_figure(d, summary, window):
     ax.set_title("Fig. 3d: μ vs normal force\nwhole trial")
     ax.legend(loc="upper right")
     ax = axes[2]
-    edges = np.array(fr.get("histogram_edges", []), dtype=float)
-    counts = np.array(fr.get("histogram_counts", []), dtype=float)
-    if counts.size:
+    # Binned over the span of the used values (summary.json's histogram is fixed at 0-3 in 0.1 steps, one
+    # bar when mu is well defined): 25 bins between the 0.5th and 99.5th percentiles (values beyond clipped to them).
+    all_used = d["mu_used"] > 0.5
+    mu_used = mu[all_used & np.isfinite(mu)]
+    if mu_used.size:
+        lo, hi = np.percentile(mu_used, [0.5, 99.5])
+        if not hi > lo:
+            lo, hi = lo - 0.01, hi + 0.01
+        width = (hi - lo) / 25
+        edges = np.linspace(lo - width, hi + width, 28)  # an empty-looking bin either side: no bar on the frame
+        counts, _ = np.histogram(np.clip(mu_used, lo, hi), bins=edges)
         ax.bar(edges[:-1], counts, width=np.diff(edges), align="edge", color=style.OKABE_ITO["blue"],
-               edgecolor="white", lw=0.5, label="frames used")
+               edgecolor="white", lw=0.5, label=f"frames used ({mu_used.size})")
+        ax.set_xlim(edges[0], edges[-1])
     if fr.get("median") is not None:
         ax.axvline(fr["median"], color=style.OKABE_ITO["vermillion"], ls="--", lw=1.5,
                    label=f"median {fr['median']:.3f}")
@@ -266,26 +311,31 @@ def friction_figure(d, summary, window):
     return fig
 
 
-def build(d, summary, window=None, whisk=None):
-    """{file name: Figure} of every figure the data allow."""
+def builders(d, summary, window=None, whisk=None):
+    """{file name: function drawing that Figure} of every figure the data allow (drawn in parallel by main)."""
     modes = present_modes(d)
     span = select_window(d, window, whisk)
     figs = {
-        "fig2bcd_shape_height_arclength.png": time_series(
+        "fig3b_whisker_signals.png": lambda: time_series(d, modes, WHISKER_ROWS, span, "Fig. 3b: whisker frame"),
+        "fig3a_world_signals.png": lambda: time_series(d, modes, WORLD_ROWS, span, "Fig. 3a: world frame"),
+        "fig2bcd_shape_height_arclength.png": lambda: time_series(
             d, modes, SHAPE_ROWS, span, "Figs. 2b–d: shape error, contact height, arc length of contact"),
-        "fig3a_world_signals.png": time_series(d, modes, WORLD_ROWS, span, "Fig. 3a: world frame"),
-        "fig3b_whisker_signals.png": time_series(d, modes, WHISKER_ROWS, span, "Fig. 3b: whisker frame"),
     }
     if (d["period"] >= 0).any():
-        figs["fig3b_per_whisk.png"] = per_whisk_figure(d, modes)
-    if "z_error" in d:
-        figs["fig2e_z_error_eq6.png"] = z_error_figure(d, summary, "eq6", "Fig. 2e: eq. (6), contact-point mode")
-        figs["fig4b_z_error_eq7.png"] = z_error_figure(d, summary, "eq7", "Fig. 4b: eq. (7), edge mode only")
-    if "tracked_height" in d and np.isfinite(d["kinematic_height"]).any():
-        figs["fig2f_kinematic_prediction.png"] = kinematic_figure(d, summary)
+        figs["fig3b_per_whisk.png"] = lambda: per_whisk_figure(d, modes)
     if "mu" in d:
-        figs["fig3cde_friction.png"] = friction_figure(d, summary, span)
+        figs["fig3cde_friction.png"] = lambda: friction_figure(d, summary, span)
+    if "z_error" in d:
+        figs["fig2e_z_error_eq6.png"] = lambda: z_error_figure(d, summary, "eq6", "Fig. 2e: eq. (6), contact-point mode")
+        figs["fig4b_z_error_eq7.png"] = lambda: z_error_figure(d, summary, "eq7", "Fig. 4b: eq. (7), edge mode only")
+    if "tracked_height" in d and np.isfinite(d["kinematic_height"]).any():
+        figs["fig2f_kinematic_prediction.png"] = lambda: kinematic_figure(d, summary)
     return figs
+
+
+def build(d, summary, window=None, whisk=None):
+    """{file name: Figure} of every figure the data allow."""
+    return {name: draw() for name, draw in builders(d, summary, window, whisk).items()}
 
 
 def main(argv=None):
@@ -296,13 +346,14 @@ def main(argv=None):
     group = parser.add_mutually_exclusive_group()
     group.add_argument("--window", type=parse_window, help="START_S,END_S: time series over this window [s]")
     group.add_argument("--whisk", type=int, help="time series over contact period N (from 1)")
+    parser.add_argument("--jobs", type=int, default=0,
+                        help="processes drawing figures side by side (default: one per CPU)")
     args = parser.parse_args(argv)
     style.apply()
     d = load(args.frames_h5)
     with open(args.summary_json) as f:
         summary = json.load(f)
-    for name, fig in build(d, summary, args.window, args.whisk).items():
-        style.save(fig, os.path.join(args.outdir, name), dpi=args.dpi)
+    style.save_all(builders(d, summary, args.window, args.whisk), args.outdir, dpi=args.dpi, jobs=args.jobs)
 
 
 if __name__ == "__main__":

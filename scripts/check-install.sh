@@ -3,7 +3,7 @@
 #   1. CMake: install to a prefix, build and run an outside C++ project with find_package(vibrissa).
 #   2. pip: `pip install .` into a fresh venv (Debian's NumPy through --system-site-packages), then, with only
 #      the pip-installed package (no build tree on PATH or PYTHONPATH): the `vibrissa` command (demo, array with
-#      its figures and animation, sweep), `python -m vibrissa`, the examples and the pipeline from Python.
+#      its figures, viewer page and animation, sweep), `python -m vibrissa`, the examples and the pipeline from Python.
 #   3. Debian package: cpack -G DEB, dpkg -i, then `vibrissa demo` and `import vibrissa` with /usr/bin/python3.
 # Usage: bash scripts/check-install.sh [BUILD_DIR]   (a configured and built Release build directory)
 set -euo pipefail
@@ -34,8 +34,8 @@ VENV=(env -u PYTHONPATH -u VIBRISSA_CLI -u VIBRISSA_FIGURES_DIR -u VIBRISSA_PYTH
 [ "$("${VENV[@]}" sh -c 'command -v vibrissa')" = "$WORK/venv/bin/vibrissa" ] || { echo "no vibrissa command in the venv"; exit 1; }
 "${VENV[@]}" vibrissa demo > /dev/null
 "${VENV[@]}" python -m vibrissa --version | grep -q "vibrissa 0.1" || { echo "python -m vibrissa failed"; exit 1; }
-"${VENV[@]}" vibrissa array --out array_results --frames 12 > /dev/null
-for f in array.h5 summary.json array_traces.png; do
+"${VENV[@]}" vibrissa array --out array_results --frames 12 --animation > /dev/null
+for f in array.h5 summary.json array_traces.png view.html array_animation.mp4; do
   [ -s "array_results/$f" ] || { ls -l array_results; echo "pip-installed vibrissa array wrote no $f"; exit 1; }
 done
 echo '{"kind": "solve", "base": {"whisker": {"length": 0.03, "curvature": 20.0},

@@ -93,11 +93,35 @@ def test_fit_line_follows_the_summary_not_the_data(trial_data):
     ax = built["fig2f_kinematic_prediction.png"].axes[0]
     x, y = lines_with_gid(ax, "fit")[0].get_data()
     np.testing.assert_allclose(y, 7.0 * x - 2.0)
-    # Fig. 2f's ranges are the data's, whatever the fit line does
-    assert ax.get_ylim() == pytest.approx(style.data_limits(d["kinematic_height"] * 1e3))
-    assert ax.get_xlim() == pytest.approx(style.data_limits(d["tracked_height"] * 1e3))
+    # Fig. 2f's ranges are the data's, whatever the fit line does: one range for both axes, equal scales, so
+    # that the identity line is the diagonal
+    x, y = d["tracked_height"] * 1e3, d["kinematic_height"] * 1e3
+    ok = np.isfinite(x) & np.isfinite(y)
+    assert ax.get_ylim() == pytest.approx(style.data_limits(x[ok], y[ok]))
+    assert ax.get_xlim() == pytest.approx(style.data_limits(x[ok], y[ok]))
+    assert ax.get_aspect() == 1.0
     for fig in built.values():
         plt.close(fig)
+
+
+def test_direction_angles_are_masked_where_undefined(trial_data):
+    d, _ = trial_data
+    for m in trial_figures.present_modes(d):
+        for q, mag in trial_figures.ANGLE_MAGNITUDE.items():
+            y = trial_figures.signal(d, trial_figures.present_modes(d), m, q, "deg")
+            drawn = np.isfinite(y)
+            assert not (drawn & (d["period_edge"] > 0.5)).any()  # first/last two frames of each contact
+            for p in np.unique(d["period"][d["period"] >= 0]):
+                idx = (d["period"] == p) & drawn
+                peak = np.nanmax(np.abs(d[m["prefix"] + mag][d["period"] == p]))
+                assert (np.abs(d[m["prefix"] + mag][idx]) >= trial_figures.ANGLE_MIN_FRACTION * peak).all()
+            assert drawn.sum() > 0.5 * (d["period"] >= 0).sum()  # most contact frames still drawn
+
+
+def test_many_whiskers_get_distinct_colours():
+    for n in (5, 13, 20):
+        colours = [matplotlib.colors.to_hex(s["color"]) for s in style.distinct_styles(n)]
+        assert len(set(colours)) == n
 
 
 def test_unwrap_deg_removes_jumps_and_follows_a_reference():
@@ -143,6 +167,22 @@ def test_count_axes_have_integer_ticks(figs):
     fig.canvas.draw()
     ticks = [t for t in counts.get_yticks() if counts.get_ylim()[0] <= t <= counts.get_ylim()[1]]
     assert len(ticks) >= 2 and all(t == round(t) for t in ticks)
+    plt.close(fig)
+
+
+def test_pitch_sweep_text_is_at_least_7_pt_for_62_whiskers():
+    rng = np.random.default_rng(0)
+    state = (rng.random((3, 62, 20)) > 0.5).astype(int)
+    d = dict(names=[f"W{i}" for i in range(62)], state=state, MB=rng.random(state.shape) * 1e-6,
+             pitch=np.radians([-5, 0, 5]))
+    style.apply()
+    fig, _ = array_pitch_sweep.build(d)
+    fig.canvas.draw()
+    sizes = [t.get_fontsize() for t in fig.findobj(matplotlib.text.Text) if t.get_text()]
+    assert min(sizes) >= 7
+    heat = fig.axes[0]  # one name per row, and the rows do not overlap at that size
+    row_pt = heat.get_window_extent().height / 62 * 72 / fig.dpi
+    assert row_pt >= 7
     plt.close(fig)
 
 
@@ -218,7 +258,7 @@ def test_array_animation_views_fps_and_frames(cli, tmp_path):
     path = tmp_path / "scene.json"
     path.write_text(json.dumps(config))
     out = tmp_path / "arr"
-    done = subprocess.run([cli, "array", path, "--out", out, "--frames", "9", "--fps", "5", "--figure-dpi", "60"],
+    done = subprocess.run([cli, "array", path, "--out", out, "--animation", "--frames", "9", "--fps", "5", "--figure-dpi", "60"],
                           capture_output=True, text=True, timeout=300)
     assert done.returncode == 0 and "failed" not in done.stderr, done.stderr
     probe = subprocess.run(["ffprobe", "-v", "error", "-select_streams", "v:0", "-count_frames", "-show_entries",

@@ -1,6 +1,6 @@
 """The `vibrissa` command from the Python package: the console script pip installs and `python -m vibrissa`.
 
-`vibrissa sweep ...` runs here (vibrissa.sweep.main). Every other subcommand is the C++ command line, the same
+`vibrissa sweep ...` and `vibrissa view ...` run here (vibrissa.sweeps.main, vibrissa.viewer.main). Every other subcommand is the C++ command line, the same
 executables as the CMake build's: the copy shipped in the wheel (vibrissa/bin/vibrissa, which hands the file
 commands to vibrissa/libexec/vibrissa/vibrissa-full), else $VIBRISSA_CLI, else the `bin/vibrissa` of the build
 tree or prefix the package lies in. The process is replaced by it (exit status and signals are the CLI's),
@@ -45,6 +45,9 @@ def main(argv=None):
     if argv and argv[0] == "sweep":
         from .sweeps import main as sweep_main
         return sweep_main(argv[1:])
+    if argv and argv[0] == "view":
+        from .viewer import main as view_main
+        return view_main(argv[1:])
     try:
         executable = cli_executable()
     except FileNotFoundError as error:

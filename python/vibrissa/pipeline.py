@@ -223,6 +223,12 @@ class ArrayResult(_NamedArrays):
         self._run.write(str(directory), bool(csv))
         return directory
 
+    def view(self, path="array_view.html"):
+        """Writes the interactive 3D viewer of this result, one self-contained HTML file (docs/viewer.md; as
+        ``vibrissa view``), and returns its path."""
+        from .viewer import view
+        return view(self, path)
+
 
 def simulate_array(config=None, progress=None, threads=None):
     """Simulates a whisker array exactly as ``vibrissa array`` does.

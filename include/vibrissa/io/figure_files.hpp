@@ -13,14 +13,17 @@ namespace vibrissa::io {
 inline constexpr std::string_view kTrialFiguresFolder = "figures";
 inline constexpr std::array<std::string_view, 1> kTrialFigures = {kTrialFiguresFolder};
 
-/// `vibrissa array`: traces, animation (MP4 or GIF) with its still frame, and the head-pitch sweep.
+/// `vibrissa array`: traces, animation (MP4 or GIF) with its still frame, the head-pitch sweep and the viewer.
 inline constexpr std::string_view kArrayTracesFigure = "array_traces.png";
 inline constexpr std::string_view kArrayAnimationMp4 = "array_animation.mp4";
 inline constexpr std::string_view kArrayAnimationGif = "array_animation.gif";
 inline constexpr std::string_view kArrayAnimationStill = "array_animation_frame.png";  ///< named by the script
 inline constexpr std::string_view kArrayPitchSweepFigure = "pitch_sweep.png";
-inline constexpr std::array<std::string_view, 5> kArrayFigures = {
-    kArrayTracesFigure, kArrayAnimationMp4, kArrayAnimationGif, kArrayAnimationStill, kArrayPitchSweepFigure};
+/// The interactive 3D viewer, one self-contained HTML page (python/vibrissa/viewer.py, docs/viewer.md).
+inline constexpr std::string_view kArrayViewer = "view.html";
+inline constexpr std::array<std::string_view, 6> kArrayFigures = {kArrayTracesFigure,   kArrayAnimationMp4,
+                                                                  kArrayAnimationGif,   kArrayAnimationStill,
+                                                                  kArrayPitchSweepFigure, kArrayViewer};
 
 /// Removes each name (file or folder) from `dir` if present; throws std::runtime_error naming the path.
 void remove_figures(const std::filesystem::path& dir, std::span<const std::string_view> names);

@@ -1,0 +1,226 @@
+"""The viewer page (docs/viewer.md) opened from disk in real headless Chromium (Debian's chromium and
+chromium-driver through python3-selenium): the canvas is drawn with the whiskers where the data put them, the
+slider moves them, clicking a whisker selects it and redraws its plots, and the page logs no error and makes
+no network request. WebGL runs on SwiftShader through ANGLE.
+
+Set VIBRISSA_VIEWER_SCREENSHOTS=DIR to keep the screenshots (docs/figures/viewer_*.png are made so).
+"""
+import base64
+import io
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+import vibrissa
+from vibrissa import viewer
+
+webdriver = pytest.importorskip("selenium.webdriver")
+from selenium.webdriver.chrome.service import Service as ChromeService  # noqa: E402
+from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
+from selenium.webdriver.common.by import By  # noqa: E402
+from selenium.webdriver.common.keys import Keys  # noqa: E402
+from selenium.webdriver.support.ui import WebDriverWait  # noqa: E402
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+CHROMEDRIVER = shutil.which("chromedriver") or "/usr/bin/chromedriver"
+pytestmark = pytest.mark.skipif(not (os.path.exists(CHROMIUM) and os.path.exists(CHROMEDRIVER)),
+                                reason="chromium and chromium-driver are not installed")
+FRAMES = 80
+WIDTH, HEIGHT = 1200, 700
+
+
+def _image(png):
+    from matplotlib import image
+    return (image.imread(io.BytesIO(png), format="png")[..., :3] * 255).astype(int)
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    """An array run (default scene, FRAMES frames, two head pitches), its page, and the deflected shapes of
+    every frame of pitch 0 [mm] as the simulation gives them."""
+    tmp = tmp_path_factory.mktemp("viewer")
+    config = vibrissa.default_array_config()
+    config["time"]["frames"] = FRAMES
+    config["head"]["pitches_deg"] = [0, 10]
+    config["output"] = {"render_count": FRAMES, "render_pitch_index": 0}
+    result = vibrissa.simulate_array(config)
+    result.write(tmp / "run")
+    page = viewer.view(tmp / "run", tmp / "view.html")
+    return dict(result=result, page=page, shapes_mm=result["render/deflected"] * 1e3, state=result.state[0])
+
+
+@pytest.fixture(scope="module")
+def browser(scene):
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--use-angle=swiftshader",
+                 "--enable-unsafe-swiftshader", f"--window-size={WIDTH},{HEIGHT}", "--force-device-scale-factor=1"):
+        options.add_argument(flag)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL", "performance": "ALL"})
+    driver = webdriver.Chrome(service=ChromeService(executable_path=CHROMEDRIVER), options=options)
+    driver.set_page_load_timeout(60)
+    try:
+        driver.get(pathlib.Path(scene["page"]).as_uri())
+        WebDriverWait(driver, 60).until(lambda d: d.execute_script("return !!(window.vibrissaViewer && "
+                                                                   "window.vibrissaViewer.ready)"))
+        yield driver
+    finally:
+        driver.quit()
+
+
+def shot(driver, name):
+    png = driver.get_screenshot_as_png()
+    keep = os.environ.get("VIBRISSA_VIEWER_SCREENSHOTS")
+    if keep:
+        pathlib.Path(keep).mkdir(parents=True, exist_ok=True)
+        (pathlib.Path(keep) / f"viewer_{name}.png").write_bytes(png)
+    return _image(png)
+
+
+def js(driver, code, *args):
+    return driver.execute_script(code, *args)
+
+
+def set_colour_by_state(driver):
+    js(driver, """const s = document.getElementById('colour');
+                  s.value = String(window.vibrissaViewer.meta.colour_by.findIndex(c => c.kind === 'state'));
+                  s.dispatchEvent(new Event('change'));""")
+
+
+def test_page_is_self_contained_and_loads_without_errors_or_requests(browser, scene):
+    text = pathlib.Path(scene["page"]).read_text()
+    assert "http://" not in text.split("<script>")[0] and "<link" not in text and " src=" not in text
+    entries = browser.get_log("browser")
+    assert not [e for e in entries if e["level"] == "SEVERE"], entries
+    requests = [json.loads(e["message"])["message"] for e in browser.get_log("performance")]
+    urls = [m["params"]["request"]["url"] for m in requests if m["method"] == "Network.requestWillBeSent"]
+    assert urls and all(u == pathlib.Path(scene["page"]).as_uri() for u in urls), urls
+    assert js(browser, "return !!document.querySelector('#scene canvas').getContext('webgl')") is not None
+
+
+def test_canvas_shows_the_whiskers_where_the_data_put_them(browser, scene):
+    set_colour_by_state(browser)
+    state = scene["state"]  # [whisker][frame]
+    frame = int(np.argmax((state == 1).sum(axis=0)))
+    js(browser, "window.vibrissaViewer.setFrame(arguments[0])", frame)
+    img = shot(browser, "contact_state")
+    canvas = browser.find_element(By.CSS_SELECTOR, "#scene canvas").rect
+    region = img[int(canvas["y"]):int(canvas["y"] + canvas["height"]), int(canvas["x"]):int(canvas["x"] + canvas["width"])]
+    assert (region.sum(axis=2) < 3 * 235).mean() > 0.005  # not blank
+    # The page's centre lines are the simulation's shapes (resampled), to half the quantisation step.
+    shapes = scene["shapes_mm"][frame]  # [whisker][node][3]
+    half_step = 0.5 * np.array(js(browser, "return window.vibrissaViewer.meta.quant.step"))
+    assert half_step.max() < 5e-3  # mm
+    for w in range(shapes.shape[0]):
+        page_line = np.array(js(browser, "return window.vibrissaViewer.centreLine(arguments[0])", w)).reshape(-1, 3)
+        assert (np.abs(page_line - viewer._resample(shapes[w])) <= half_step * 1.001 + 1e-5).all()
+    # Each whisker in contact is drawn vermillion at the screen point of its mid-node (from the data, through
+    # the page's camera); a free whisker grey.
+    checked = 0
+    for w in np.flatnonzero(state[:, frame] == 1):
+        x, y = js(browser, "return window.vibrissaViewer.projectMm(arguments[0])", shapes[w][shapes.shape[1] // 3].tolist())
+        patch = img[int(y) - 2:int(y) + 3, int(x) - 2:int(x) + 3].reshape(-1, 3)
+        assert ((patch[:, 0] > 170) & (patch[:, 1] < 140) & (patch[:, 2] < 90)).any(), (w, x, y, patch)
+        checked += 1
+    assert checked >= 1
+
+
+def test_slider_moves_the_whiskers(browser, scene):
+    js(browser, "window.vibrissaViewer.setFrame(10)")
+    before = np.array(js(browser, "return window.vibrissaViewer.centreLine(0)"))
+    img0 = shot(browser, "frame_10")
+    slider = browser.find_element(By.ID, "slider")
+    slider.send_keys(Keys.ARROW_RIGHT)  # as a user: the slider has focus, one step
+    assert js(browser, "return window.vibrissaViewer.frame") == 11
+    js(browser, """const s = document.getElementById('slider'); s.value = '40';
+                   s.dispatchEvent(new Event('input'));""")
+    assert js(browser, "return window.vibrissaViewer.frame") == 40
+    after = np.array(js(browser, "return window.vibrissaViewer.centreLine(0)")).reshape(-1, 3)
+    assert np.abs(after.ravel() - before).max() > 0.1  # mm: whisking moved it
+    half_step = 0.5 * np.array(js(browser, "return window.vibrissaViewer.meta.quant.step"))
+    assert (np.abs(after - viewer._resample(scene["shapes_mm"][40][0])) <= half_step * 1.001 + 1e-5).all()
+    img1 = shot(browser, "frame_40")
+    assert np.abs(img1 - img0).sum(axis=2).astype(bool).mean() > 0.001
+    assert "frame 41/" in browser.find_element(By.ID, "time").text
+
+
+def test_clicking_a_whisker_selects_it_and_redraws_its_plots(browser, scene):
+    frame = 40
+    js(browser, "window.vibrissaViewer.setFrame(arguments[0])", frame)
+    n = len(scene["result"].datasets["whisker"])
+    all_nodes = np.array(js(browser, "return window.vibrissaViewer.screenNodes()"))  # [whisker][node][2]
+    points = all_nodes[:, 2 * all_nodes.shape[1] // 3]
+    current = js(browser, "return window.vibrissaViewer.selected")
+    # the whisker whose point lies farthest from every other whisker (an unambiguous click), not selected yet
+    clearance = [np.min(np.linalg.norm(np.delete(all_nodes, w, axis=0).reshape(-1, 2) - points[w], axis=1))
+                 if w != current else -1 for w in range(n)]
+    target = int(np.argmax(clearance))
+    assert clearance[target] > 4
+    plot_before = js(browser, "return document.getElementById('plot-MB').toDataURL()")
+    canvas = browser.find_element(By.CSS_SELECTOR, "#scene canvas")
+    r = canvas.rect
+    x, y = points[target]
+    ActionChains(browser).move_to_element_with_offset(canvas, int(round(x - r["x"] - r["width"] / 2)),
+                                                      int(round(y - r["y"] - r["height"] / 2))).click().perform()
+    assert js(browser, "return window.vibrissaViewer.selected") == target
+    name = scene["result"].datasets["whisker"][target]
+    name = name.decode() if isinstance(name, bytes) else str(name)
+    assert name in browser.find_element(By.ID, "info").text
+    assert browser.find_element(By.ID, "whisker").get_attribute("value") == str(target)
+    assert js(browser, "return document.getElementById('plot-MB').toDataURL()") != plot_before
+    shot(browser, "selected")
+    assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def test_second_head_pitch_is_shown_on_request(browser, scene):
+    js(browser, """const s = document.getElementById('pitch'); s.value = '1'; s.dispatchEvent(new Event('change'));""")
+    assert js(browser, "return window.vibrissaViewer.group") == 1
+    labels = js(browser, "return Array.from(document.getElementById('pitch').options).map(o => o.text)")
+    assert labels == ["+0.0°", "+10.0°"]
+    js(browser, """const s = document.getElementById('colour'); s.value = '0'; s.dispatchEvent(new Event('change'));
+                   window.vibrissaViewer.setFrame(60);""")
+    assert "M_B" in browser.find_element(By.ID, "legend-title").text
+    shot(browser, "pitch10_MB")
+
+
+def test_cli_view_writes_the_page(scene, tmp_path):
+    cli = os.environ.get("VIBRISSA_CLI")
+    if not cli:
+        pytest.skip("VIBRISSA_CLI is not set")
+    out = tmp_path / "v.html"
+    done = subprocess.run([cli, "view", str(pathlib.Path(scene["page"]).parent / "run"), "-o", str(out)],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    text = out.read_text()
+    assert 'id="vibrissa-meta"' in text and "THREE.OrbitControls" in text
+    bad = subprocess.run([cli, "view", str(tmp_path / "nothing")], capture_output=True, text=True, timeout=60)
+    assert bad.returncode == 1 and "nothing" in bad.stderr
+
+
+def decode_blob(element):
+    """What viewer.js does to a blob element, in NumPy."""
+    import re
+    import zlib
+    dtype = {"float32": np.float32, "int16": np.int16, "uint8": np.uint8, "uint32": np.uint32}[
+        re.search(r'data-dtype="(\w+)"', element).group(1)]
+    raw = zlib.decompress(base64.b64decode(element.split(">", 1)[1].rsplit("<", 1)[0]))
+    size = np.dtype(dtype).itemsize
+    values = np.frombuffer(raw, np.uint8).reshape(size, -1).T.copy().view(dtype).ravel()
+    stride = re.search(r'data-delta="(\d+)"', element)
+    if stride:
+        values = values.reshape(-1, int(stride.group(1))).cumsum(axis=0, dtype=dtype).ravel()
+    return values
+
+
+def test_blobs_round_trip_exactly():
+    blobs = viewer._Blobs()
+    a = (np.arange(7, dtype=np.float32) - 3) / 3
+    codes = np.array([[32767, -32767, 5], [-32767, 32767, -5], [0, 1, 2]], dtype=np.int16)  # wrapping deltas
+    assert blobs.add(a) == "b0" and blobs.add(codes, delta=True) == "b1"
+    assert np.array_equal(decode_blob(blobs.elements[0]), a)
+    assert np.array_equal(decode_blob(blobs.elements[1]), codes.ravel())
