@@ -12,5 +12,7 @@ void register_array(CLI::App& app);
 void register_reconstruct(CLI::App& app);
 void register_calibrate(CLI::App& app);
 void register_sweep(CLI::App& app);
+void register_modes(CLI::App& app);
+void register_dynamics(CLI::App& app);
 
 }  // namespace vibrissa::cli

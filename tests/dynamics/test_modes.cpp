@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
 
 #include "euler_bernoulli.hpp"
+#include "vibrissa/array/morphology.hpp"
 #include "vibrissa/core/whisker.hpp"
 #include "vibrissa/dynamics/modes.hpp"
 
@@ -118,6 +120,29 @@ TEST(DynamicsModes, FundamentalScalesWithBaseRadiusOverLengthSquared) {
   const double base = f1(0.03, 100e-6);
   EXPECT_NEAR(f1(0.03, 150e-6) / base, 1.5, 1e-4);
   EXPECT_NEAR(f1(0.045, 100e-6) / base, 1.0 / 2.25, 1e-4);
+}
+
+TEST(DynamicsModes, FundamentalsOfTheRatArrayLieInTheMeasuredRange) {
+  // Hartmann et al. 2003 (J. Neurosci. 23:6510): isolated rat whiskers clamped at the base resonate at 27-260 Hz
+  // (first mode), mostly depending on length. The Towal 2011 array's 31 whiskers (lengths, base radii, E =
+  // 3.3 GPa, taper 15) with the default density, clamped, must fall in that range.
+  double lo = 1e9, hi = 0.0;
+  std::string lo_name, hi_name;
+  for (const auto& spec : array::towal2011().whiskers) {
+    const Whisker w = array::make_rest_whisker(spec, 40);
+    const double f1 = modes(w, DynamicsProperties{}, 1).frequency_hz(0);
+    if (f1 < lo) {
+      lo = f1;
+      lo_name = spec.name;
+    }
+    if (f1 > hi) {
+      hi = f1;
+      hi_name = spec.name;
+    }
+  }
+  std::printf("Towal 2011 array, first mode: %.1f Hz (%s) to %.1f Hz (%s)\n", lo, lo_name.c_str(), hi, hi_name.c_str());
+  EXPECT_GE(lo, 27.0 * 0.8);
+  EXPECT_LE(hi, 260.0 * 1.25);
 }
 
 TEST(DynamicsModes, DampingRatiosFollowTheJointDampers) {
