@@ -79,8 +79,20 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
   }
   if (j.contains("initial")) {
     const json& i = j.at("initial");
-    only_keys(i, "initial", {"tip_force"});
+    only_keys(i, "initial", {"tip_force", "force", "arc_length"});
+    if (i.contains("tip_force") && i.contains("force"))
+      fail("initial needs at most one of \"tip_force\" and \"force\" (with \"arc_length\")");
+    if (i.contains("arc_length") && !i.contains("force")) fail("initial.arc_length needs initial.force");
     if (i.contains("tip_force")) c.tip_force_B = json_vec3(i.at("tip_force"), "initial.tip_force");
+    if (i.contains("force")) {
+      c.tip_force_B = json_vec3(i.at("force"), "initial.force");
+      if (i.contains("arc_length")) {
+        const double s = json_number(i.at("arc_length"), "initial.arc_length");
+        if (!(s > 0.0 && s <= c.whisker.length()))
+          fail("initial.arc_length must be in (0, " + format_value(c.whisker.length()) + "] [m], got " + format_value(s));
+        c.force_arc_length = s;
+      }
+    }
   }
   c.options.duration = number_or(j, "duration", "", c.options.duration);
   c.options.output_rate = number_or(j, "output_rate", "", c.options.output_rate);
@@ -100,9 +112,18 @@ dynamics::BaseTrajectory base_trajectory(const DynamicsCase& c) {
 dynamics::InitialState initial_state(const DynamicsCase& c, const dynamics::LinearModel& model) {
   dynamics::InitialState s;
   if (c.tip_force_B) {
-    // Equilibrium under a tip force F (B axes): K q = Q with Q_j = (p_tip - p_j) x F = D_tip^T F.
-    const Eigen::Index tip = static_cast<Eigen::Index>(3 * c.whisker.links());
-    const Eigen::VectorXd Q = model.node_displacement.middleRows<3>(tip).transpose() * *c.tip_force_B;
+    // Equilibrium under a force F (B axes) at arc length s on link k: K q = Q with Q_j = (x(s) - p_j) x F for
+    // j <= k, i.e. Q = D(s)^T F with D(s) the displacement of the point, interpolated along link k between its
+    // nodes (the link is rigid, so this is exact).
+    const double arc = c.force_arc_length.value_or(c.whisker.length());
+    int k = 0;
+    double h = 0.0;
+    c.whisker.locate(arc, k, h);
+    const Eigen::Index a = static_cast<Eigen::Index>(3 * k);
+    const double f = std::clamp(h / c.whisker.link_lengths()[static_cast<std::size_t>(k)], 0.0, 1.0);
+    const Eigen::MatrixXd D = (1.0 - f) * model.node_displacement.middleRows<3>(a) +
+                              f * model.node_displacement.middleRows<3>(a + 3);
+    const Eigen::VectorXd Q = D.transpose() * *c.tip_force_B;
     s.q = model.stiffness.ldlt().solve(Q);
     s.q_dot = Eigen::VectorXd::Zero(s.q.size());
   }

@@ -28,7 +28,10 @@ struct DynamicsCase {
   Whisker whisker;
   dynamics::DynamicsProperties properties;
   std::optional<Whisking> whisking;       ///< none: the base stays at the whisker's pose
-  std::optional<Eigen::Vector3d> tip_force_B;  ///< start in equilibrium under this tip force [N], then released
+  /// Start in equilibrium under this force [N] (B axes, fixed direction) at `force_arc_length` (default: the
+  /// tip), released at t = 0: a whisker let go by a peg or a finger.
+  std::optional<Eigen::Vector3d> tip_force_B;
+  std::optional<double> force_arc_length;
   dynamics::SimulationOptions options;
   int mode_count = 10;                    ///< modes listed (`vibrissa modes`, summary.json)
 };
