@@ -13,5 +13,7 @@ void register_reconstruct(CLI::App& app);
 void register_calibrate(CLI::App& app);
 void register_sweep(CLI::App& app);
 void register_view(CLI::App& app);
+void register_modes(CLI::App& app);
+void register_dynamics(CLI::App& app);
 
 }  // namespace vibrissa::cli

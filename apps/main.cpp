@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   vibrissa::cli::register_calibrate(app);
   vibrissa::cli::register_sweep(app);
   vibrissa::cli::register_view(app);
+  vibrissa::cli::register_modes(app);
+  vibrissa::cli::register_dynamics(app);
 #endif
   try {
     // A killed run (Ctrl-C, kill, a closed terminal) removes its half-written temporaries and keeps the

@@ -22,6 +22,7 @@ void bind_case(py::module_& m);   // case.cpp: Case JSON round trip (same code a
 void bind_trial(py::module_& m);  // trial.cpp: Trial, read_trial, synthesis and analysis (= `vibrissa synth/trial`)
 void bind_array(py::module_& m);  // array.cpp: array simulation (= `vibrissa array`)
 void bind_recon(py::module_& m);  // recon.cpp: reconstruct from two tracked views (= `vibrissa reconstruct`)
+void bind_dynamics(py::module_& m);  // dynamics.cpp: Modes, modes and simulate_dynamics (= `vibrissa modes/dynamics`)
 
 /// Enum arguments accept the enum or its JSON name ("paper", "rigid", ...); ValueError otherwise.
 Scheme scheme_arg(py::handle obj);

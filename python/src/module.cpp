@@ -21,4 +21,5 @@ PYBIND11_MODULE(_vibrissa, m) {
   vibrissa::python::bind_trial(m);
   vibrissa::python::bind_array(m);
   vibrissa::python::bind_recon(m);
+  vibrissa::python::bind_dynamics(m);
 }

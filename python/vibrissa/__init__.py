@@ -79,6 +79,7 @@ from .batch import (  # noqa: F401
 from .inverse import BaseWrenchBatch, solve_base_wrench_batch  # noqa: F401
 from .recon import reconstruct  # noqa: F401
 from .sweeps import sweep  # noqa: F401
+from .dynamics import DynamicsResult, modes, simulate_dynamics  # noqa: F401
 from .case import case_from_dict, load_case, make_whisker, solve_case_file  # noqa: F401
 from .pipeline import (  # noqa: F401
     ArrayResult,
@@ -106,4 +107,5 @@ __all__ = [
     "solve_point_batch", "status_from_string", "write_result",
     "BaseWrenchBatch", "BaseWrenchIdentifiability", "BaseWrenchResult", "BaseWrenchRoot", "solve_base_wrench",
     "solve_base_wrench_batch", "reconstruct", "sweep",
+    "DynamicsResult", "modes", "simulate_dynamics",
 ]

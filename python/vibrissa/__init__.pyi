@@ -66,5 +66,8 @@ from .pipeline import simulate_array as simulate_array
 from .pipeline import synthesize_trial as synthesize_trial
 from .pipeline import synthesize_trial_defaults as synthesize_trial_defaults
 from .sweeps import sweep as sweep
+from .dynamics import DynamicsResult as DynamicsResult
+from .dynamics import modes as modes
+from .dynamics import simulate_dynamics as simulate_dynamics
 
 __all__: list[str]

@@ -127,6 +127,10 @@ SceneObject object_from(const json& o, const std::string& where, const std::file
 
 }  // namespace
 
+Protraction protraction_from_json(const json& j, const std::string& where, const Protraction& base) {
+  return protraction_from(j, where, base);
+}
+
 nlohmann::json default_array_config_json() {
   return json::parse(R"({
     "morphology": {"source": "towal2011", "sides": "right"},

@@ -23,4 +23,5 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/morphology_table.cpp
   ${CMAKE_CURRENT_LIST_DIR}/object_json.cpp
   ${CMAKE_CURRENT_LIST_DIR}/array_config.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/array_outputs.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/array_outputs.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/dynamics_case.cpp)

@@ -19,6 +19,10 @@ array::SimulationConfig array_config_from_json(const nlohmann::json& config,
                                                const std::filesystem::path& base_dir = ".");
 /// Reads a JSON file (comments allowed) and calls array_config_from_json.
 array::SimulationConfig load_array_config(const std::filesystem::path& path);
+/// A whisk from {"amplitude_deg", "frequency_Hz", "set_point_deg", "phase_deg", "series": {"time_s",
+/// "dtheta_deg"}} (keys missing: `base`'s values), validated; errors name `where`. Other keys are the caller's.
+array::Protraction protraction_from_json(const nlohmann::json& j, const std::string& where,
+                                         const array::Protraction& base = {});
 /// Reads a JSON file (comments allowed); errors name the file.
 nlohmann::json read_array_config_json(const std::filesystem::path& path);
 

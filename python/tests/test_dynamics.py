@@ -1,0 +1,85 @@
+"""Dynamics from Python (docs/dynamics.md): the same numbers as `vibrissa modes` / `vibrissa dynamics`, the
+labelled outputs, the physics of a release."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import vibrissa
+
+CASE = {"whisker": {"length": 0.03, "curvature": 15.0, "links": 40},
+        "dynamics": {"damping_ratio": 0.1},
+        "whisking": {"amplitude_deg": 20, "frequency_Hz": 8},
+        "duration": 0.05, "output_rate": 2000}
+
+
+def whisker():
+    return vibrissa.Whisker.from_parabola(0.03, 15.0, properties=vibrissa.WhiskerProperties(links=40))
+
+
+def test_modes_match_the_cli(cli, tmp_path):
+    case = tmp_path / "case.json"
+    case.write_text(json.dumps(CASE))
+    done = subprocess.run([cli, "modes", str(case), "-n", "6", "-o", str(tmp_path / "modes.json")],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    from_cli = json.loads((tmp_path / "modes.json").read_text())["modes"]
+    m = vibrissa.modes(whisker(), 6, damping_ratio=0.1)
+    assert len(m) == 6 and m.node_shapes.shape == (6, 41, 3)
+    np.testing.assert_array_equal(m.frequency, [x["frequency"] for x in from_cli])
+    np.testing.assert_array_equal(m.damping_ratio, [x["damping_ratio"] for x in from_cli])
+    assert m.damping_ratio[0] == pytest.approx(0.1, rel=1e-12)
+    assert np.all(np.diff(m.frequency) >= 0)
+
+
+def test_simulation_matches_the_cli_and_its_files(cli, tmp_path):
+    xr = pytest.importorskip("xarray")
+    case = tmp_path / "case.json"
+    case.write_text(json.dumps(CASE))
+    done = subprocess.run([cli, "dynamics", str(case), "--out", str(tmp_path / "cli")], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    r = vibrissa.simulate_dynamics(whisker(), 0.05, 2000, whisking={"amplitude_deg": 20, "frequency_Hz": 8},
+                                   damping_ratio=0.1)
+    assert r.status == "completed" and len(r.time) == 101
+    file = xr.open_dataset(tmp_path / "cli" / "dynamics.h5")
+    np.testing.assert_array_equal(file.MB.values, r.MB)
+    np.testing.assert_array_equal(file.nodes_W.values, r.nodes_W)
+    assert r.nodes_W.shape == (101, 41, 3)
+    assert file.Mz_B.attrs["units"] == "N m"
+    ds = r.to_xarray()
+    assert set(ds.data_vars) == set(file.data_vars)
+    r.write(tmp_path / "py")
+    assert (tmp_path / "py" / "summary.json").is_file()
+    assert json.loads((tmp_path / "py" / "summary.json").read_text())["steps"] == r.summary["steps"]
+
+
+def test_release_rings_down_at_the_first_mode():
+    w = whisker()
+    m = vibrissa.modes(w, 2, damping_ratio=0.05)
+    # The two lowest modes bend the curved whisker out of and in its plane (108 Hz apart by 0.6 %): a tip force
+    # in the plane (y) rings the in-plane one, the mode whose tip moves along y.
+    n = int(np.argmax(np.abs(m.node_shapes[:, -1, 1])))
+    assert abs(m.node_shapes[n, -1, 2]) < 1e-6
+    r = vibrissa.simulate_dynamics(w, 8 / m.frequency[n], 200 * m.frequency[n], tip_force=[0, 1e-6, 0],
+                                   damping_ratio=0.05, relative_tolerance=1e-9)
+    # Late in the ring-down that mode dominates: the tip's zero crossings are half a damped period apart.
+    y = r.tip_y_B
+    late = r.time > 3 / m.frequency[n]
+    t, y = r.time[late], y[late]
+    crossings = t[:-1][np.sign(y[:-1]) != np.sign(y[1:])]
+    periods = 2 * np.diff(crossings)
+    assert periods.mean() == pytest.approx(1 / m.damped_frequency[n], rel=1e-3)
+    assert np.abs(r.tip_z_B).max() < 1e-9 * np.abs(r.tip_y_B).max()  # in the plane it stays
+    energy = r.kinetic_energy + r.elastic_energy
+    assert np.all(np.diff(energy) <= 1e-12 * energy[0])  # damped: the energy never grows
+
+
+def test_bad_settings_name_the_field():
+    with pytest.raises(ValueError, match="dynamics.density"):
+        vibrissa.modes(whisker(), 3, density=-1.0)
+    with pytest.raises(ValueError, match="whisking.frequency_Hz"):
+        vibrissa.simulate_dynamics(whisker(), 0.01, whisking={"frequency_Hz": -2})
+    with pytest.raises(ValueError, match="unknown field whisking"):
+        vibrissa.simulate_dynamics(whisker(), 0.01, whisking={"amplitude": 3})

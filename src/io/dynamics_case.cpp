@@ -1,0 +1,282 @@
+// `vibrissa modes` / `vibrissa dynamics` cases and outputs (include/vibrissa/io/dynamics_case.hpp).
+#include "vibrissa/io/dynamics_case.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "csv_cells.hpp"
+#include "vibrissa/core/checks.hpp"
+#include "vibrissa/io/array_config.hpp"
+#include "vibrissa/io/atomic_file.hpp"
+#include "vibrissa/io/case_json.hpp"
+#include "vibrissa/io/json_file.hpp"
+#include "vibrissa/io/json_input.hpp"
+#include "vibrissa/io/output_folder.hpp"
+
+namespace vibrissa::io {
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& msg) { throw std::invalid_argument(msg); }
+
+void only_keys(const json& j, const std::string& where, const std::set<std::string>& known) {
+  if (!j.is_object()) fail(where + " must be a JSON object, got " + describe(j));
+  for (const auto& [key, value] : j.items())
+    if (!known.count(key)) fail("unknown field " + (where.empty() ? "" : where + ".") + quote_text(key));
+}
+
+double number_or(const json& j, const char* key, const std::string& where, double fallback) {
+  return j.contains(key) ? json_number(j.at(key), where.empty() ? std::string(key) : where + "." + key) : fallback;
+}
+
+}  // namespace
+
+dynamics::BaseTrajectory whisking_trajectory(const Pose& pose, const Whisking& w) {
+  return dynamics::trajectory_from_placements([pose, w](double t) {
+    const double d = w.protraction(t);
+    return Placement(rotation_from_angles(pose.theta + d, pose.phi + w.k_phi * d, pose.zeta + w.k_zeta * d),
+                     pose.p_W_base);
+  });
+}
+
+DynamicsCase dynamics_case_from_json(const json& j) {
+  if (!j.is_object()) fail("the case must be a JSON object, got " + describe(j));
+  if (!j.contains("whisker")) fail("the case needs a \"whisker\" object");
+  return dynamics_case_from_json(j, whisker_from_json(j.at("whisker")));
+}
+
+DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
+  only_keys(j, "", {"whisker", "dynamics", "whisking", "initial", "duration", "output_rate", "relative_tolerance",
+                    "absolute_tolerance", "modes"});
+  DynamicsCase c(whisker);
+  if (j.contains("dynamics")) {
+    const json& d = j.at("dynamics");
+    only_keys(d, "dynamics", {"density", "damping_ratio", "joint_damping_time", "gravity"});
+    c.properties.density = number_or(d, "density", "dynamics", c.properties.density);
+    if (d.contains("damping_ratio") && d.contains("joint_damping_time"))
+      fail("dynamics needs at most one of \"damping_ratio\" and \"joint_damping_time\"");
+    c.properties.damping_ratio = number_or(d, "damping_ratio", "dynamics", c.properties.damping_ratio);
+    if (d.contains("joint_damping_time"))
+      c.properties.joint_damping_time = json_number(d.at("joint_damping_time"), "dynamics.joint_damping_time");
+    if (d.contains("gravity")) c.properties.gravity_W = json_vec3(d.at("gravity"), "dynamics.gravity");
+  }
+  dynamics::validate(c.properties);
+  if (j.contains("whisking")) {
+    const json& w = j.at("whisking");
+    only_keys(w, "whisking", {"amplitude_deg", "frequency_Hz", "set_point_deg", "phase_deg", "series", "k_phi", "k_zeta"});
+    Whisking wk;
+    wk.protraction = protraction_from_json(w, "whisking");
+    wk.k_phi = number_or(w, "k_phi", "whisking", 0.0);
+    wk.k_zeta = number_or(w, "k_zeta", "whisking", 0.0);
+    if (!std::isfinite(wk.k_phi)) fail("whisking.k_phi must be finite, got " + format_value(wk.k_phi));
+    if (!std::isfinite(wk.k_zeta)) fail("whisking.k_zeta must be finite, got " + format_value(wk.k_zeta));
+    c.whisking = wk;
+  }
+  if (j.contains("initial")) {
+    const json& i = j.at("initial");
+    only_keys(i, "initial", {"tip_force", "force", "arc_length"});
+    if (i.contains("tip_force") && i.contains("force"))
+      fail("initial needs at most one of \"tip_force\" and \"force\" (with \"arc_length\")");
+    if (i.contains("arc_length") && !i.contains("force")) fail("initial.arc_length needs initial.force");
+    if (i.contains("tip_force")) c.tip_force_B = json_vec3(i.at("tip_force"), "initial.tip_force");
+    if (i.contains("force")) {
+      c.tip_force_B = json_vec3(i.at("force"), "initial.force");
+      if (i.contains("arc_length")) {
+        const double s = json_number(i.at("arc_length"), "initial.arc_length");
+        if (!(s > 0.0 && s <= c.whisker.length()))
+          fail("initial.arc_length must be in (0, " + format_value(c.whisker.length()) + "] [m], got " + format_value(s));
+        c.force_arc_length = s;
+      }
+    }
+  }
+  c.options.duration = number_or(j, "duration", "", c.options.duration);
+  c.options.output_rate = number_or(j, "output_rate", "", c.options.output_rate);
+  c.options.relative_tolerance = number_or(j, "relative_tolerance", "", c.options.relative_tolerance);
+  c.options.absolute_tolerance = number_or(j, "absolute_tolerance", "", c.options.absolute_tolerance);
+  dynamics::validate(c.options);
+  if (j.contains("modes")) c.mode_count = json_integer(j.at("modes"), "modes", 1, 100000);
+  return c;
+}
+
+dynamics::BaseTrajectory base_trajectory(const DynamicsCase& c) {
+  const Pose pose = c.whisker.placement().pose();
+  if (c.whisking) return whisking_trajectory(pose, *c.whisking);
+  return dynamics::fixed_base(c.whisker.placement());
+}
+
+dynamics::InitialState initial_state(const DynamicsCase& c, const dynamics::LinearModel& model) {
+  dynamics::InitialState s;
+  if (c.tip_force_B) {
+    // Equilibrium under a force F (B axes) at arc length s on link k: K q = Q with Q_j = (x(s) - p_j) x F for
+    // j <= k, i.e. Q = D(s)^T F with D(s) the displacement of the point, interpolated along link k between its
+    // nodes (the link is rigid, so this is exact).
+    const double arc = c.force_arc_length.value_or(c.whisker.length());
+    int k = 0;
+    double h = 0.0;
+    c.whisker.locate(arc, k, h);
+    const Eigen::Index a = static_cast<Eigen::Index>(3 * k);
+    const double f = std::clamp(h / c.whisker.link_lengths()[static_cast<std::size_t>(k)], 0.0, 1.0);
+    const Eigen::MatrixXd D = (1.0 - f) * model.node_displacement.middleRows<3>(a) +
+                              f * model.node_displacement.middleRows<3>(a + 3);
+    const Eigen::VectorXd Q = D.transpose() * *c.tip_force_B;
+    s.q = model.stiffness.ldlt().solve(Q);
+    s.q_dot = Eigen::VectorXd::Zero(s.q.size());
+  }
+  return s;
+}
+
+json modes_to_json(const dynamics::Modes& m, const Whisker& w, const DynamicsCase& c) {
+  json out;
+  out["density"] = c.properties.density;
+  out["joint_damping_time"] = m.damping_time;
+  out["links"] = w.links();
+  out["length"] = w.length();
+  json list = json::array();
+  for (int i = 0; i < m.count(); ++i) {
+    json mode;
+    mode["frequency"] = m.frequency_hz(i);
+    mode["damped_frequency"] = m.damped_frequency_hz(i);
+    mode["damping_ratio"] = m.damping_ratio(i);
+    mode["torsion_fraction"] = m.torsion_fraction(i);
+    json nodes = json::array();
+    for (int k = 0; k <= w.links(); ++k) {
+      const Eigen::Vector3d v = m.node_shapes.col(i).segment<3>(3 * k);
+      nodes.push_back(json::array({v.x(), v.y(), v.z()}));
+    }
+    mode["node_shape_B"] = std::move(nodes);
+    list.push_back(std::move(mode));
+  }
+  out["modes"] = std::move(list);
+  return out;
+}
+
+namespace {
+
+struct Column {
+  std::string name;
+  std::vector<double> values;
+  std::string units, long_name;
+};
+
+std::vector<Column> scalar_columns(const dynamics::TimeSeries& ts) {
+  const std::size_t n = ts.time.size();
+  std::vector<Column> cols;
+  cols.push_back({"time", ts.time, "s", "time"});
+  std::vector<double> th(n), ph(n), ze(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Pose p = ts.placements[i].pose();
+    th[i] = p.theta;
+    ph[i] = p.phi;
+    ze[i] = p.zeta;
+  }
+  cols.push_back({"theta", th, "rad", "protraction angle of the base"});
+  cols.push_back({"phi", ph, "rad", "elevation angle of the base"});
+  cols.push_back({"zeta", ze, "rad", "roll angle of the base"});
+  auto vec = [&](const std::vector<Eigen::Vector3d>& v, const std::string& prefix, const std::string& suffix,
+                 const std::string& units, const std::string& what) {
+    const char* axes[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+      std::vector<double> x(n);
+      for (std::size_t i = 0; i < n; ++i) x[i] = v[i](a);
+      cols.push_back({prefix + axes[a] + suffix, std::move(x), units, what + ", " + axes[a] + " component"});
+    }
+  };
+  vec(ts.force_B, "F", "_B", "N", "force on the follicle, whisker frame");
+  vec(ts.moment_B, "M", "_B", "N m", "moment on the follicle about the base, whisker frame");
+  vec(ts.force_W, "F", "_W", "N", "force on the follicle, world frame");
+  vec(ts.moment_W, "M", "_W", "N m", "moment on the follicle about the base, world frame");
+  std::vector<double> FT(n), MB(n), FD(n), MD(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& F = ts.force_B[i];
+    const auto& M = ts.moment_B[i];
+    FT[i] = std::hypot(F.y(), F.z());
+    MB[i] = std::hypot(M.y(), M.z());
+    FD[i] = std::atan2(F.z(), F.y());
+    MD[i] = std::atan2(M.z(), M.y());
+  }
+  cols.push_back({"FT", FT, "N", "transverse force at the base"});
+  cols.push_back({"MB", MB, "N m", "bending moment at the base"});
+  cols.push_back({"FD", FD, "rad", "direction of the transverse force, atan2(Fz, Fy)"});
+  cols.push_back({"MD", MD, "rad", "direction of the bending moment, atan2(Mz, My)"});
+  vec(ts.tip_displacement_B, "tip_", "_B", "m", "tip displacement from its rest position, whisker frame");
+  cols.push_back({"kinetic_energy", ts.kinetic_energy, "J", "kinetic energy relative to the base frame"});
+  cols.push_back({"elastic_energy", ts.elastic_energy, "J", "elastic energy of the joints"});
+  return cols;
+}
+
+}  // namespace
+
+LabelledData dynamics_data(const dynamics::TimeSeries& ts) {
+  LabelledData d;
+  const std::size_t n = ts.time.size();
+  for (Column& c : scalar_columns(ts)) {
+    LabelledVariable v{.name = c.name, .dims = {"time"}, .shape = {n}, .units = c.units, .long_name = c.long_name};
+    d.add_owned(std::move(v), std::move(c.values));
+  }
+  if (!ts.nodes_W.empty()) {
+    const std::size_t nodes = ts.nodes_W.front().size();
+    std::vector<double> xyz;
+    xyz.reserve(n * nodes * 3);
+    for (const auto& frame : ts.nodes_W)
+      for (const auto& p : frame) xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
+    d.add_owned({.name = "nodes_W", .dims = {"time", "node", "component"}, .shape = {n, nodes, 3}, .units = "m",
+                 .long_name = "whisker nodes, world frame", .compress = true},
+                std::move(xyz));
+    d.add_index_coordinate("", "node", nodes, "node index from the base");
+    d.add_component_coordinate();
+  }
+  d.attributes = {{"", "format", "vibrissa-dynamics"}, {"", "format_version", 1.0},
+                  {"", "status", std::string(to_string(ts.status))}};
+  return d;
+}
+
+json dynamics_summary(const dynamics::TimeSeries& ts, const dynamics::Modes& modes, const DynamicsCase& c) {
+  json j;
+  j["status"] = std::string(to_string(ts.status));
+  j["frames"] = ts.time.size();
+  j["steps"] = ts.steps;
+  j["rejected_steps"] = ts.rejected_steps;
+  j["smallest_step_s"] = ts.smallest_step;
+  j["largest_step_s"] = ts.largest_step;
+  double FT = 0.0, MB = 0.0, tip = 0.0;
+  for (std::size_t i = 0; i < ts.time.size(); ++i) {
+    FT = std::max(FT, std::hypot(ts.force_B[i].y(), ts.force_B[i].z()));
+    MB = std::max(MB, std::hypot(ts.moment_B[i].y(), ts.moment_B[i].z()));
+    tip = std::max(tip, ts.tip_displacement_B[i].norm());
+  }
+  j["peak_FT_uN"] = FT * 1e6;
+  j["peak_MB_uNm"] = MB * 1e6;
+  j["peak_tip_displacement_mm"] = tip * 1e3;
+  json f = json::array(), z = json::array();
+  for (int i = 0; i < std::min(c.mode_count, modes.count()); ++i) {
+    f.push_back(modes.frequency_hz(i));
+    z.push_back(modes.damping_ratio(i));
+  }
+  j["mode_frequencies_Hz"] = f;
+  j["mode_damping_ratios"] = z;
+  return j;
+}
+
+void write_dynamics_outputs(const dynamics::TimeSeries& ts, const json& summary, const std::filesystem::path& dir) {
+  const std::vector<Column> cols = scalar_columns(ts);
+  OutputFolder folder(dir);
+  folder.stage_text("dynamics.csv", [&](std::ostream& out) {
+    for (std::size_t k = 0; k < cols.size(); ++k) out << (k ? "," : "") << cols[k].name;
+    out << "\n";
+    for (std::size_t i = 0; i < ts.time.size(); ++i) {
+      for (std::size_t k = 0; k < cols.size(); ++k) out << (k ? "," : "") << csv::cell(cols[k].values[i]);
+      out << "\n";
+    }
+  });
+  const LabelledData data = dynamics_data(ts);
+  folder.stage("dynamics.h5", [&](const std::string& tmp) { write_labelled_h5(data, tmp); });
+  stage_json_file(folder, "summary.json", summary);
+  folder.commit();
+}
+
+}  // namespace vibrissa::io

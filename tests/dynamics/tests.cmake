@@ -1,0 +1,3 @@
+set(VIBRISSA_TEST_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/test_modes.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/test_simulate.cpp)
