@@ -30,6 +30,9 @@ namespace {
 
 bool is_tip(const Whisker& w, double s) { return s >= w.length() * (1.0 - 1e-12); }
 
+/// Newton steps a warm attempt on an object with creases takes before the sliding attempt takes over.
+constexpr int warm_creased_iterations = 12;
+
 /// Scaled unknowns of a side attempt from a force in B at arc length s of the rest whisker (its rest frame there).
 Eigen::Vector3d side_unknowns(const Whisker& w, const Scales& sc, const Eigen::Vector3d& F_B, double s) {
   int k;
@@ -88,8 +91,18 @@ bool valid_contact(const Whisker& w, const ObjectGeometryB& g, const ObjectAttem
 }
 
 ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
-                             double& sigma, bool tip, const Eigen::Vector3d& u0, const SolveOptions& options) {
-  ObjectAttempt a = tip ? attempt_tip(w, sc, g, law, u0, options) : attempt_side(w, sc, g, law, sigma, u0, options);
+                             double& sigma, bool tip, const Eigen::Vector3d& u0, const SolveOptions& options,
+                             const WarmAttempt& warm) {
+  // A warm start's force is near the solution's: solved at once to the tolerance the polish below asks of it
+  // (half of it), instead of to the plain tolerance and then polished.
+  SolveOptions first = options;
+  if (warm.warm) {
+    const double f0 = tip ? u0.norm() : std::hypot(u0[0], u0[1]);
+    if (f0 > 0.0) first.tolerance = std::min(options.tolerance, 0.5e-11 * std::max(f0, 1e-4) * sc.length);
+  }
+  ObjectAttempt a = tip ? attempt_tip(w, sc, g, law, u0, first, warm.piece)
+                        : attempt_side(w, sc, g, law, sigma, u0, first, warm.piece);
+  a.piece = warm.piece;
   int iterations = a.lm.iterations;
   if (!tip && a.status == Status::slipped_off) {  // the side contact would need s > L: the tip touches
     const ObjectContactPoint p = contact_point_at(w, g, a.state, false, sigma);
@@ -121,7 +134,7 @@ ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeo
   // The distance equation on the loaded link's lowest piece (object_problem.hpp), until the piece it holds on
   // is the lowest (each a smooth system, started from the last solution).
   if (a.status == Status::converged) {
-    ClearancePiece piece = ClearancePiece::centre;
+    ClearancePiece piece = a.piece;
     for (int change = 0; change < 4; ++change) {
       const ClearancePiece lowest = lowest_piece(w, g, a.state);
       if (lowest == piece) break;
@@ -223,7 +236,15 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
       u0 = tip ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.0, 0.0, std::clamp(*hint, 1e-6 * sc.length, w.length()) / sc.length);
     }
   }
-  out.attempt = attempt_object(w, sc, g, law, sigma, tip, u0, options);
+  WarmAttempt first;
+  SolveOptions first_options = options;
+  if (warm) {
+    first = {true, lowest_piece(w, g, *warm)};
+    // On an object with creases (a mesh, a box) a warm attempt that does not converge within a few Newton steps
+    // has stalled at a crease's band: the sliding attempt below crosses it (docs/objects.md, "Speed").
+    if (g.shape->needs_thickness()) first_options.max_iterations = std::min(options.max_iterations, warm_creased_iterations);
+  }
+  out.attempt = attempt_object(w, sc, g, law, sigma, tip, u0, first_options, first);
   int iterations = out.attempt.lm.iterations;
   if (out.attempt.status == Status::not_converged && !tip) {
     out.attempt = attempt_by_sliding(w, sc, g, law, sigma, u0, options);
