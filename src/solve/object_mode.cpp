@@ -32,6 +32,8 @@ bool is_tip(const Whisker& w, double s) { return s >= w.length() * (1.0 - 1e-12)
 
 /// Newton steps a warm attempt on an object with creases takes before the sliding attempt takes over.
 constexpr int warm_creased_iterations = 12;
+/// Links each side of the contact on which a warm sliding attempt looks for the whisker's nearest point.
+constexpr int sliding_window = 4;
 
 /// Scaled unknowns of a side attempt from a force in B at arc length s of the rest whisker (its rest frame there).
 Eigen::Vector3d side_unknowns(const Whisker& w, const Scales& sc, const Eigen::Vector3d& F_B, double s) {
@@ -46,6 +48,27 @@ Eigen::Vector3d side_unknowns(const Whisker& w, const Scales& sc, const Eigen::V
 Eigen::Vector3d tip_unknowns(const Whisker& w, const Scales& sc, const Eigen::Vector3d& F_B) {
   const Eigen::Matrix3d& R = w.rest_link_frames_B().back();
   return R.transpose() * F_B / sc.force;
+}
+
+/// The deflected whisker's smallest gap on the links about arc length s (sliding_window each side), or on the
+/// whole whisker where the smallest of those is at the window's end (the nearest point lies beyond it).
+Clearance nearest_about(const PlacedShape& placed, const Whisker& w, const std::vector<Eigen::Vector3d>& nodes,
+                        bool thickness, double s) {
+  const std::vector<double> none;
+  const std::span<const double> radii = thickness ? std::span<const double>(w.node_radii()) : std::span<const double>(none);
+  int k;
+  double h;
+  w.locate(s, k, h);
+  const int last = static_cast<int>(nodes.size()) - 1;
+  const auto lo = static_cast<std::size_t>(std::clamp(k - sliding_window, 0, last));
+  const auto hi = static_cast<std::size_t>(std::clamp(k + 1 + sliding_window, 0, last));
+  const std::size_t count = hi - lo + 1;
+  const std::span<const Eigen::Vector3d> all(nodes);
+  const std::span<const double> arc(w.node_arc_lengths());
+  const Clearance c = clearance(placed, all.subspan(lo, count), arc.subspan(lo, count),
+                                radii.empty() ? radii : radii.subspan(lo, count));
+  const bool at_end = (lo > 0 && c.arc_length <= arc[lo]) || (hi < nodes.size() - 1 && c.arc_length >= arc[hi]);
+  return at_end ? clearance(placed, nodes, arc, radii) : c;
 }
 
 }  // namespace
@@ -165,7 +188,9 @@ ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeo
 }
 
 ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
-                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options) {
+                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options,
+                                 const WarmAttempt& warm) {
+  const bool local = warm.warm;
   // Alternate: the force with s held (gap and force direction), then s moved to where the deflected whisker is
   // nearest the object; then every equation from there.
   Eigen::Vector3d u = u0;
@@ -173,19 +198,20 @@ ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const Objec
   const std::vector<double> none;
   const PlacedShape placed{g.shape, ObjectPose{g.R_BO, g.p_BO + g.offset_B}};
   std::vector<Eigen::Vector3d> nodes;
-  for (int round = 0; round < 30; ++round) {
+  for (int round = 0; round < (local ? 1 : 30); ++round) {  // warm: one move to the nearest point
     const ObjectAttempt held =
         attempt_side(w, sc, g, law, sigma, u, options, ClearancePiece::centre, u[2] * sc.length);
     iterations += held.lm.iterations;
     if (held.status != Status::converged) break;
     u = held.lm.u;
     deflected_shape(w, Placement{}, held.state, nodes);
-    const Clearance c = clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none);
+    const Clearance c = local ? nearest_about(placed, w, nodes, g.thickness, held.state.arc_length)
+                              : clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none);
     const double s_next = std::clamp(c.arc_length, 1e-6 * sc.length, sc.length) / sc.length;
     if (std::abs(s_next - u[2]) < 1e-9) break;
     u[2] = s_next;
   }
-  ObjectAttempt a = attempt_object(w, sc, g, law, sigma, false, u, options);
+  ObjectAttempt a = attempt_object(w, sc, g, law, sigma, false, u, options, warm);
   a.lm.iterations += iterations;
   return a;
 }
@@ -244,7 +270,12 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
     // has stalled at a crease's band: the sliding attempt below crosses it (docs/objects.md, "Speed").
     if (g.shape->needs_thickness()) first_options.max_iterations = std::min(options.max_iterations, warm_creased_iterations);
   }
-  out.attempt = attempt_object(w, sc, g, law, sigma, tip, u0, first_options, first);
+  // A warm side contact on an object with creases (a mesh, a box) starts by sliding: from the previous frame's
+  // contact the tangency's root is usually across a crease's band, where Newton's steps stall; the force with s
+  // held, then s moved to the nearest point about it, land beside the root (docs/objects.md, "Speed").
+  const bool slide_first = warm && !tip && g.shape->needs_thickness();
+  out.attempt = slide_first ? attempt_by_sliding(w, sc, g, law, sigma, u0, options, first)
+                            : attempt_object(w, sc, g, law, sigma, tip, u0, first_options, first);
   int iterations = out.attempt.lm.iterations;
   if (out.attempt.status == Status::not_converged && !tip) {
     out.attempt = attempt_by_sliding(w, sc, g, law, sigma, u0, options);

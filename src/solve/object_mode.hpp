@@ -38,8 +38,11 @@ ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeo
                              const WarmAttempt& warm = {});
 /// A side contact found by alternating: the force with s held, then s moved to the deflected whisker's point
 /// nearest the object; then attempt_object from there (when a direct attempt stalls in the object's creases).
+/// A warm start (`warm`) moves s once, to the nearest point on the links about the contact (nearest_about), and
+/// starts the last attempt as attempt_object's warm attempts.
 ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
-                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options);
+                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options,
+                                 const WarmAttempt& warm = {});
 /// The solve: start (warm, hint, or the rest whisker's deepest point), attempts, continuation from touch.
 ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
                                    std::optional<double> hint, const SolveOptions& options, const LoadState* warm);
