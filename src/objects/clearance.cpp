@@ -57,12 +57,18 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
       last_arc = arc[i];
     }
   }
-  // Each link that may come below the threshold: the minimum of the gap along it.
+  // Each link that may come below the threshold: the minimum of the gap along it. The lower bound: a link's
+  // gap is at least the mean of its ends' (bounds) less K l / 2.
+  double bound = n == 1 ? g[0].lower : std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const double l = arc[i + 1] - arc[i];
-    if (0.5 * (g[i].lower + g[i + 1].lower - K * l) >= threshold && std::isfinite(threshold)) continue;
+    if (0.5 * (g[i].lower + g[i + 1].lower - K * l) >= threshold && std::isfinite(threshold)) {
+      bound = std::min(bound, 0.5 * (g[i].lower + g[i + 1].lower - K * l));
+      continue;
+    }
     evaluate(i);
     evaluate(i + 1);
+    bound = std::min(bound, 0.5 * (g[i].gap + g[i + 1].gap - K * l));
     const Eigen::Vector3d a = nodes[i], ab = nodes[i + 1] - nodes[i];
     const double dr = radius(i + 1) - radius(i);
     // d gap / d tau = n . (b - a) - (r_b - r_a): a minimum inside needs it to change sign.
@@ -90,6 +96,7 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     }
   }
   if (best.gap >= threshold) best.gap = std::max(best.gap, threshold);
+  best.lower_bound = std::min(bound, best.gap);
   return best;
 }
 

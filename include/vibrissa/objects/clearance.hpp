@@ -17,6 +17,9 @@ struct Clearance {
   double arc_length = 0.0;                                ///< where along the whisker [m]
   Eigen::Vector3d point_W = Eigen::Vector3d::Zero();      ///< the centre-line point there
   Eigen::Vector3d normal_W = Eigen::Vector3d::UnitZ();    ///< the object's normal there
+  /// No point of the polyline has a smaller gap [m], whatever the shape (from the gaps and bounds of the nodes and
+  /// the gap's Lipschitz constant along each link): how far it may move before it can enter the object.
+  double lower_bound = -std::numeric_limits<double>::infinity();
 };
 
 /// The smallest gap of the polyline `nodes_W` (arc lengths `arc`, radii `radii` or none) to the placed shape, if
