@@ -211,9 +211,11 @@ double ContactTracker::object_clearance(std::size_t k, const PlacedShape& object
       return lower;
     }
   }
+  // Inside the object last frame: only whether it still is matters (no onset with it, release when clear).
+  const bool sign_only = have_previous_ && k < clearance_prev_.size() && clearance_prev_[k] < 0.0;
   const std::vector<double> none;
   const Clearance c = clearance(object, nodes_now_W_, whisker_.node_arc_lengths(),
-                                options_.thickness ? whisker_.node_radii() : none, 0.0);
+                                options_.thickness ? whisker_.node_radii() : none, 0.0, sign_only);
   arc_length = c.arc_length;
   clearance_bound_[k] = c.lower_bound;
   before.resize(nodes_now_W_.size());

@@ -20,7 +20,7 @@ struct NodeGap {
 }  // namespace
 
 Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> nodes, std::span<const double> arc,
-                    std::span<const double> radii, double threshold) {
+                    std::span<const double> radii, double threshold, bool first_below) {
   const std::size_t n = nodes.size();
   Clearance best;
   if (n == 0) return best;
@@ -53,6 +53,7 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     g[i].lower = std::max(from_box, from_last);
     if (!(g[i].lower >= threshold + K * longest)) {  // (an infinite threshold: every node)
       evaluate(i);
+      if (first_below && g[i].gap < threshold) return best;
       last_gap = g[i].gap;
       last_arc = arc[i];
     }
@@ -68,6 +69,7 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     }
     evaluate(i);
     evaluate(i + 1);
+    if (first_below && best.gap < threshold) return best;
     bound = std::min(bound, 0.5 * (g[i].gap + g[i + 1].gap - K * l));
     const Eigen::Vector3d a = nodes[i], ab = nodes[i + 1] - nodes[i];
     const double dr = radius(i + 1) - radius(i);
@@ -84,6 +86,7 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
       const SurfacePoint q = object.nearest_W(p);
       const double gap = q.signed_distance - (radius(i) + tau * dr);
       if (gap < best.gap) best = {gap, arc[i] + tau * l, p, q.normal};
+      if (first_below && gap < threshold) return best;
       const double d = derivative(q.normal);
       if (d < 0.0) {
         lo = tau;

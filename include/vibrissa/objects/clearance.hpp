@@ -27,7 +27,10 @@ struct Clearance {
 /// than the distance moved, so a node's gap bounds its neighbourhood; the shape's bounds bound the rest); on each
 /// remaining link the minimum is found from its ends' gaps and slopes (exact for convex shapes; the nearest
 /// local minimum on a mesh). Result gap = +infinity if nothing is below the threshold.
+/// `first_below`: returns at the first point found below the threshold (whether there is one, not the smallest;
+/// lower_bound then -infinity).
 Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> nodes_W, std::span<const double> arc,
-                    std::span<const double> radii, double threshold = std::numeric_limits<double>::infinity());
+                    std::span<const double> radii, double threshold = std::numeric_limits<double>::infinity(),
+                    bool first_below = false);
 
 }  // namespace vibrissa
