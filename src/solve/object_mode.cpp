@@ -83,12 +83,35 @@ Touch first_touch(const Whisker& w, const ObjectGeometryB& g, const DeepestPoint
     return clearance(moved, w.rest_nodes_B(), w.node_arc_lengths(), radii);
   };
   double lo = 0.0, hi = std::max(-d.gap, 1e-9 * w.length());
-  for (int i = 0; i < 60 && gap(hi).gap < 0.0; ++i) hi *= 2.0;
-  for (int i = 0; i < 60 && hi - lo > 1e-13 * w.length(); ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (gap(mid).gap < 0.0 ? lo : hi) = mid;
+  Clearance at_hi = gap(hi);
+  for (int i = 0; i < 60 && at_hi.gap < 0.0; ++i) {
+    lo = hi;
+    hi *= 2.0;
+    at_hi = gap(hi);
   }
-  return {-hi * d.normal_B, gap(hi).arc_length};
+  // The gap's root between lo (inside) and hi (clear): regula falsi, halving the retained end's value when the
+  // same end is kept twice (the Illinois method), a bisection where that point is not inside the bracket. Each
+  // evaluation is a clearance query of the whole whisker: this takes a few where bisection took dozens.
+  double f_lo = gap(lo).gap, f_hi = at_hi.gap;
+  int kept = 0;  // +1: lo was kept last time, -1: hi
+  for (int i = 0; i < 100 && hi - lo > 1e-13 * w.length(); ++i) {
+    double x = std::isfinite(f_hi) && f_lo < 0.0 ? lo + (hi - lo) * (-f_lo) / (f_hi - f_lo) : 0.5 * (lo + hi);
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    const Clearance c = gap(x);
+    if (c.gap < 0.0) {
+      lo = x;
+      f_lo = c.gap;
+      if (kept == -1) f_hi *= 0.5;
+      kept = -1;
+    } else {
+      hi = x;
+      f_hi = c.gap;
+      at_hi = c;
+      if (kept == 1) f_lo *= 0.5;
+      kept = 1;
+    }
+  }
+  return {-hi * d.normal_B, at_hi.arc_length};
 }
 
 bool core_within_reach(const Whisker& w, const ObjectGeometryB& g) {
