@@ -1,6 +1,8 @@
 #include "vibrissa/contact/tracker.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -56,6 +58,8 @@ void ContactTracker::reset() {
   have_previous_ = false;
   edges_prev_.clear();
   clearance_prev_.clear();
+  clearance_bound_.clear();
+  clearance_nodes_O_.clear();
   forget_contact();
   frame_ = TrackedFrame{};
 }
@@ -190,13 +194,33 @@ const TrackedFrame& ContactTracker::step(const Placement& X, std::span<const Edg
   return frame_;
 }
 
-double ContactTracker::rest_clearance(const PlacedShape& object, const std::vector<Eigen::Vector3d>& nodes_W,
-                                      double* arc_length) const {
+double ContactTracker::object_clearance(std::size_t k, const PlacedShape& object, double& arc_length) {
+  if (clearance_bound_.size() != clearance_nodes_O_.size() || k >= clearance_bound_.size()) {
+    clearance_bound_.resize(k + 1, -std::numeric_limits<double>::infinity());
+    clearance_nodes_O_.resize(k + 1);
+  }
+  std::vector<Eigen::Vector3d>& before = clearance_nodes_O_[k];
+  // The signed distance changes no faster than the point moves: the gap is at least the bound then less the
+  // largest motion of a node since (a link's points move no more than its ends).
+  if (clearance_bound_[k] > 0.0 && before.size() == nodes_now_W_.size()) {
+    double moved = 0.0;
+    for (std::size_t i = 0; i < before.size(); ++i)
+      moved = std::max(moved, (object.X_WO.to_object(nodes_now_W_[i]) - before[i]).squaredNorm());
+    const double lower = clearance_bound_[k] - std::sqrt(moved);
+    if (lower > 0.0) {
+      arc_length = 0.0;
+      return lower;
+    }
+  }
+  // Inside the object last frame: only whether it still is matters (no onset with it, release when clear).
+  const bool sign_only = have_previous_ && k < clearance_prev_.size() && clearance_prev_[k] < 0.0;
   const std::vector<double> none;
-  // Only whether (and where) the whisker is inside matters: links clear by more than a link's length are skipped.
-  const Clearance c = clearance(object, nodes_W, whisker_.node_arc_lengths(),
-                                options_.thickness ? whisker_.node_radii() : none, 0.0);
-  if (arc_length) *arc_length = c.arc_length;
+  const Clearance c = clearance(object, nodes_now_W_, whisker_.node_arc_lengths(),
+                                options_.thickness ? whisker_.node_radii() : none, 0.0, sign_only);
+  arc_length = c.arc_length;
+  clearance_bound_[k] = c.lower_bound;
+  before.resize(nodes_now_W_.size());
+  for (std::size_t i = 0; i < before.size(); ++i) before[i] = object.X_WO.to_object(nodes_now_W_[i]);
   return c.gap;
 }
 
@@ -211,7 +235,7 @@ const TrackedFrame& ContactTracker::step(const Placement& X, std::span<const Pla
   thread_local std::vector<double> now, where;
   now.assign(objects.size(), 0.0);
   where.assign(objects.size(), 0.0);
-  for (std::size_t k = 0; k < objects.size(); ++k) now[k] = rest_clearance(objects[k], nodes_now_W_, &where[k]);
+  for (std::size_t k = 0; k < objects.size(); ++k) now[k] = object_clearance(k, objects[k], where[k]);
   if (have_previous_) {
     if (frame_.state == ContactState::pushed_past && now[static_cast<std::size_t>(edge_)] >= 0.0) {
       frame_.state = ContactState::free;  // clear of the object it was pushed past

@@ -20,7 +20,7 @@ struct NodeGap {
 }  // namespace
 
 Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> nodes, std::span<const double> arc,
-                    std::span<const double> radii, double threshold) {
+                    std::span<const double> radii, double threshold, bool first_below) {
   const std::size_t n = nodes.size();
   Clearance best;
   if (n == 0) return best;
@@ -53,16 +53,24 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     g[i].lower = std::max(from_box, from_last);
     if (!(g[i].lower >= threshold + K * longest)) {  // (an infinite threshold: every node)
       evaluate(i);
+      if (first_below && g[i].gap < threshold) return best;
       last_gap = g[i].gap;
       last_arc = arc[i];
     }
   }
-  // Each link that may come below the threshold: the minimum of the gap along it.
+  // Each link that may come below the threshold: the minimum of the gap along it. The lower bound: a link's
+  // gap is at least the mean of its ends' (bounds) less K l / 2.
+  double bound = n == 1 ? g[0].lower : std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const double l = arc[i + 1] - arc[i];
-    if (0.5 * (g[i].lower + g[i + 1].lower - K * l) >= threshold && std::isfinite(threshold)) continue;
+    if (0.5 * (g[i].lower + g[i + 1].lower - K * l) >= threshold && std::isfinite(threshold)) {
+      bound = std::min(bound, 0.5 * (g[i].lower + g[i + 1].lower - K * l));
+      continue;
+    }
     evaluate(i);
     evaluate(i + 1);
+    if (first_below && best.gap < threshold) return best;
+    bound = std::min(bound, 0.5 * (g[i].gap + g[i + 1].gap - K * l));
     const Eigen::Vector3d a = nodes[i], ab = nodes[i + 1] - nodes[i];
     const double dr = radius(i + 1) - radius(i);
     // d gap / d tau = n . (b - a) - (r_b - r_a): a minimum inside needs it to change sign.
@@ -78,6 +86,7 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
       const SurfacePoint q = object.nearest_W(p);
       const double gap = q.signed_distance - (radius(i) + tau * dr);
       if (gap < best.gap) best = {gap, arc[i] + tau * l, p, q.normal};
+      if (first_below && gap < threshold) return best;
       const double d = derivative(q.normal);
       if (d < 0.0) {
         lo = tau;
@@ -90,6 +99,7 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     }
   }
   if (best.gap >= threshold) best.gap = std::max(best.gap, threshold);
+  best.lower_bound = std::min(bound, best.gap);
   return best;
 }
 

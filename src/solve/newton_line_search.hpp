@@ -22,6 +22,7 @@ LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bou
   evaluate_with_jacobian(f, u, r, J);
   if (!r.allFinite()) return out;
   double cost = r.squaredNorm();
+  double previous_r_max = 0.0;  // max-norm of the residual at the last accepted point (0: none yet)
   int it = 0;
   for (; it < max_iterations; ++it) {
     if (r.cwiseAbs().maxCoeff() <= tolerance) {
@@ -29,21 +30,34 @@ LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bou
       break;
     }
     bool accepted = false;
-    auto try_step = [&](const Eigen::Vector3d& step) {
+    // A trial point costs one forward evaluation, and the Jacobian is formed only where a step is accepted short
+    // of the tolerance (a converged point needs none); a full Newton step is evaluated with its Jacobian at once
+    // where Newton's quadratic model predicts the residual there to stay above the tolerance (speculation_margin,
+    // levenberg_marquardt.hpp), so that an accepted step costs one walk.
+    const double r_now = r.cwiseAbs().maxCoeff();
+    const double predicted = previous_r_max > 0.0 ? r_now * (r_now / previous_r_max) * (r_now / previous_r_max)
+                                                  : r_now * r_now;
+    auto try_step = [&](const Eigen::Vector3d& step, bool speculate) {
       if (!step.allFinite()) return false;
       const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
       Vec r_new;
-      evaluate(f, u_new, r_new);
+      Jac J_new;
+      if (speculate) evaluate_with_jacobian(f, u_new, r_new, J_new);
+      else evaluate(f, u_new, r_new);
       const double cost_new = r_new.squaredNorm();
       if (!r_new.allFinite() || !(cost_new < cost)) return false;
       u = u_new;
-      evaluate_with_jacobian(f, u, r, J);
-      cost = r.squaredNorm();
+      r = r_new;
+      cost = cost_new;
+      previous_r_max = r_now;
+      if (speculate) J = J_new;
+      else if (r.cwiseAbs().maxCoeff() > tolerance) evaluate_with_jacobian(f, u, r, J);
       return true;
     };
     const Eigen::Vector3d newton = -J.partialPivLu().solve(r);
     double t = 1.0;
-    for (int halving = 0; halving < 12 && !accepted; ++halving, t *= 0.5) accepted = try_step(t * newton);
+    for (int halving = 0; halving < 12 && !accepted; ++halving, t *= 0.5)
+      accepted = try_step(t * newton, halving == 0 && predicted > speculation_margin * tolerance);
     if (!accepted) {  // damped steps, as levenberg_marquardt()
       const Eigen::Matrix3d A = J.transpose() * J;
       const Eigen::Vector3d g = J.transpose() * r;
@@ -51,7 +65,7 @@ LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bou
       for (double lambda = 1e-6 * scale; lambda < 1e12 * scale && !accepted; lambda *= 10.0) {
         Eigen::Matrix3d damped = A;
         damped.diagonal() += lambda * A.diagonal().cwiseMax(1e-12 * scale);
-        accepted = try_step(-damped.ldlt().solve(g));
+        accepted = try_step(-damped.ldlt().solve(g), false);
       }
     }
     if (!accepted) break;  // stalled

@@ -30,6 +30,11 @@ namespace {
 
 bool is_tip(const Whisker& w, double s) { return s >= w.length() * (1.0 - 1e-12); }
 
+/// Newton steps a warm attempt on an object with creases takes before the sliding attempt takes over.
+constexpr int warm_creased_iterations = 12;
+/// Links each side of the contact on which a warm sliding attempt looks for the whisker's nearest point.
+constexpr int sliding_window = 4;
+
 /// Scaled unknowns of a side attempt from a force in B at arc length s of the rest whisker (its rest frame there).
 Eigen::Vector3d side_unknowns(const Whisker& w, const Scales& sc, const Eigen::Vector3d& F_B, double s) {
   int k;
@@ -45,6 +50,27 @@ Eigen::Vector3d tip_unknowns(const Whisker& w, const Scales& sc, const Eigen::Ve
   return R.transpose() * F_B / sc.force;
 }
 
+/// The deflected whisker's smallest gap on the links about arc length s (sliding_window each side), or on the
+/// whole whisker where the smallest of those is at the window's end (the nearest point lies beyond it).
+Clearance nearest_about(const PlacedShape& placed, const Whisker& w, const std::vector<Eigen::Vector3d>& nodes,
+                        bool thickness, double s) {
+  const std::vector<double> none;
+  const std::span<const double> radii = thickness ? std::span<const double>(w.node_radii()) : std::span<const double>(none);
+  int k;
+  double h;
+  w.locate(s, k, h);
+  const int last = static_cast<int>(nodes.size()) - 1;
+  const auto lo = static_cast<std::size_t>(std::clamp(k - sliding_window, 0, last));
+  const auto hi = static_cast<std::size_t>(std::clamp(k + 1 + sliding_window, 0, last));
+  const std::size_t count = hi - lo + 1;
+  const std::span<const Eigen::Vector3d> all(nodes);
+  const std::span<const double> arc(w.node_arc_lengths());
+  const Clearance c = clearance(placed, all.subspan(lo, count), arc.subspan(lo, count),
+                                radii.empty() ? radii : radii.subspan(lo, count));
+  const bool at_end = (lo > 0 && c.arc_length <= arc[lo]) || (hi < nodes.size() - 1 && c.arc_length >= arc[hi]);
+  return at_end ? clearance(placed, nodes, arc, radii) : c;
+}
+
 }  // namespace
 
 Touch first_touch(const Whisker& w, const ObjectGeometryB& g, const DeepestPoint& d) {
@@ -57,12 +83,35 @@ Touch first_touch(const Whisker& w, const ObjectGeometryB& g, const DeepestPoint
     return clearance(moved, w.rest_nodes_B(), w.node_arc_lengths(), radii);
   };
   double lo = 0.0, hi = std::max(-d.gap, 1e-9 * w.length());
-  for (int i = 0; i < 60 && gap(hi).gap < 0.0; ++i) hi *= 2.0;
-  for (int i = 0; i < 60 && hi - lo > 1e-13 * w.length(); ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (gap(mid).gap < 0.0 ? lo : hi) = mid;
+  Clearance at_hi = gap(hi);
+  for (int i = 0; i < 60 && at_hi.gap < 0.0; ++i) {
+    lo = hi;
+    hi *= 2.0;
+    at_hi = gap(hi);
   }
-  return {-hi * d.normal_B, gap(hi).arc_length};
+  // The gap's root between lo (inside) and hi (clear): regula falsi, halving the retained end's value when the
+  // same end is kept twice (the Illinois method), a bisection where that point is not inside the bracket. Each
+  // evaluation is a clearance query of the whole whisker: this takes a few where bisection took dozens.
+  double f_lo = gap(lo).gap, f_hi = at_hi.gap;
+  int kept = 0;  // +1: lo was kept last time, -1: hi
+  for (int i = 0; i < 100 && hi - lo > 1e-13 * w.length(); ++i) {
+    double x = std::isfinite(f_hi) && f_lo < 0.0 ? lo + (hi - lo) * (-f_lo) / (f_hi - f_lo) : 0.5 * (lo + hi);
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    const Clearance c = gap(x);
+    if (c.gap < 0.0) {
+      lo = x;
+      f_lo = c.gap;
+      if (kept == -1) f_hi *= 0.5;
+      kept = -1;
+    } else {
+      hi = x;
+      f_hi = c.gap;
+      at_hi = c;
+      if (kept == 1) f_lo *= 0.5;
+      kept = 1;
+    }
+  }
+  return {-hi * d.normal_B, at_hi.arc_length};
 }
 
 bool core_within_reach(const Whisker& w, const ObjectGeometryB& g) {
@@ -88,8 +137,18 @@ bool valid_contact(const Whisker& w, const ObjectGeometryB& g, const ObjectAttem
 }
 
 ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
-                             double& sigma, bool tip, const Eigen::Vector3d& u0, const SolveOptions& options) {
-  ObjectAttempt a = tip ? attempt_tip(w, sc, g, law, u0, options) : attempt_side(w, sc, g, law, sigma, u0, options);
+                             double& sigma, bool tip, const Eigen::Vector3d& u0, const SolveOptions& options,
+                             const WarmAttempt& warm) {
+  // A warm start's force is near the solution's: solved at once to the tolerance the polish below asks of it
+  // (half of it), instead of to the plain tolerance and then polished.
+  SolveOptions first = options;
+  if (warm.warm) {
+    const double f0 = tip ? u0.norm() : std::hypot(u0[0], u0[1]);
+    if (f0 > 0.0) first.tolerance = std::min(options.tolerance, 0.5e-11 * std::max(f0, 1e-4) * sc.length);
+  }
+  ObjectAttempt a = tip ? attempt_tip(w, sc, g, law, u0, first, warm.piece)
+                        : attempt_side(w, sc, g, law, sigma, u0, first, warm.piece);
+  a.piece = warm.piece;
   int iterations = a.lm.iterations;
   if (!tip && a.status == Status::slipped_off) {  // the side contact would need s > L: the tip touches
     const ObjectContactPoint p = contact_point_at(w, g, a.state, false, sigma);
@@ -121,7 +180,7 @@ ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeo
   // The distance equation on the loaded link's lowest piece (object_problem.hpp), until the piece it holds on
   // is the lowest (each a smooth system, started from the last solution).
   if (a.status == Status::converged) {
-    ClearancePiece piece = ClearancePiece::centre;
+    ClearancePiece piece = a.piece;
     for (int change = 0; change < 4; ++change) {
       const ClearancePiece lowest = lowest_piece(w, g, a.state);
       if (lowest == piece) break;
@@ -152,7 +211,9 @@ ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeo
 }
 
 ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
-                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options) {
+                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options,
+                                 const WarmAttempt& warm) {
+  const bool local = warm.warm;
   // Alternate: the force with s held (gap and force direction), then s moved to where the deflected whisker is
   // nearest the object; then every equation from there.
   Eigen::Vector3d u = u0;
@@ -160,19 +221,20 @@ ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const Objec
   const std::vector<double> none;
   const PlacedShape placed{g.shape, ObjectPose{g.R_BO, g.p_BO + g.offset_B}};
   std::vector<Eigen::Vector3d> nodes;
-  for (int round = 0; round < 30; ++round) {
+  for (int round = 0; round < (local ? 1 : 30); ++round) {  // warm: one move to the nearest point
     const ObjectAttempt held =
         attempt_side(w, sc, g, law, sigma, u, options, ClearancePiece::centre, u[2] * sc.length);
     iterations += held.lm.iterations;
     if (held.status != Status::converged) break;
     u = held.lm.u;
     deflected_shape(w, Placement{}, held.state, nodes);
-    const Clearance c = clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none);
+    const Clearance c = local ? nearest_about(placed, w, nodes, g.thickness, held.state.arc_length)
+                              : clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none);
     const double s_next = std::clamp(c.arc_length, 1e-6 * sc.length, sc.length) / sc.length;
     if (std::abs(s_next - u[2]) < 1e-9) break;
     u[2] = s_next;
   }
-  ObjectAttempt a = attempt_object(w, sc, g, law, sigma, false, u, options);
+  ObjectAttempt a = attempt_object(w, sc, g, law, sigma, false, u, options, warm);
   a.lm.iterations += iterations;
   return a;
 }
@@ -223,7 +285,20 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
       u0 = tip ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.0, 0.0, std::clamp(*hint, 1e-6 * sc.length, w.length()) / sc.length);
     }
   }
-  out.attempt = attempt_object(w, sc, g, law, sigma, tip, u0, options);
+  WarmAttempt first;
+  SolveOptions first_options = options;
+  if (warm) {
+    first = {true, lowest_piece(w, g, *warm)};
+    // On an object with creases (a mesh, a box) a warm attempt that does not converge within a few Newton steps
+    // has stalled at a crease's band: the sliding attempt below crosses it (docs/objects.md, "Speed").
+    if (g.shape->needs_thickness()) first_options.max_iterations = std::min(options.max_iterations, warm_creased_iterations);
+  }
+  // A warm side contact on an object with creases (a mesh, a box) starts by sliding: from the previous frame's
+  // contact the tangency's root is usually across a crease's band, where Newton's steps stall; the force with s
+  // held, then s moved to the nearest point about it, land beside the root (docs/objects.md, "Speed").
+  const bool slide_first = warm && !tip && g.shape->needs_thickness();
+  out.attempt = slide_first ? attempt_by_sliding(w, sc, g, law, sigma, u0, options, first)
+                            : attempt_object(w, sc, g, law, sigma, tip, u0, first_options, first);
   int iterations = out.attempt.lm.iterations;
   if (out.attempt.status == Status::not_converged && !tip) {
     out.attempt = attempt_by_sliding(w, sc, g, law, sigma, u0, options);

@@ -24,14 +24,25 @@ Touch first_touch(const Whisker& w, const ObjectGeometryB& g, const DeepestPoint
 bool core_within_reach(const Whisker& w, const ObjectGeometryB& g);
 /// Whether a converged attempt is a contact: pushing, and at the tip only if the whisker's gap falls toward it.
 bool valid_contact(const Whisker& w, const ObjectGeometryB& g, const ObjectAttempt& a, double sigma);
+/// What a warm start knows before its first attempt: that it is one (its force is near the solution's, so the
+/// first attempt is solved to the polish's tolerance at once) and the loaded link's lowest piece at the previous
+/// frame's load, where the distance equation starts.
+struct WarmAttempt {
+  bool warm = false;
+  ClearancePiece piece = ClearancePiece::centre;
+};
 /// One attempt from u0, switching between side and tip where the equations say the contact is at the other, and
 /// (a line core) to the axis's other side `sigma` where the force says so.
 ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
-                             double& sigma, bool tip, const Eigen::Vector3d& u0, const SolveOptions& options);
+                             double& sigma, bool tip, const Eigen::Vector3d& u0, const SolveOptions& options,
+                             const WarmAttempt& warm = {});
 /// A side contact found by alternating: the force with s held, then s moved to the deflected whisker's point
 /// nearest the object; then attempt_object from there (when a direct attempt stalls in the object's creases).
+/// A warm start (`warm`) moves s once, to the nearest point on the links about the contact (nearest_about), and
+/// starts the last attempt as attempt_object's warm attempts.
 ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
-                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options);
+                                 double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options,
+                                 const WarmAttempt& warm = {});
 /// The solve: start (warm, hint, or the rest whisker's deepest point), attempts, continuation from touch.
 ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
                                    std::optional<double> hint, const SolveOptions& options, const LoadState* warm);

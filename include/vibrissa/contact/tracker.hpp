@@ -117,8 +117,11 @@ class ContactTracker {
   void solve_edge_frame(const Placement& X_WB, const EdgeSegment& e, const std::optional<Eigen::Vector3d>& approach_W,
                         std::optional<double> hint);
   void record_converged(const EdgeSegment* e);
-  [[nodiscard]] double rest_clearance(const PlacedShape& object, const std::vector<Eigen::Vector3d>& nodes_W,
-                                      double* arc_length = nullptr) const;
+  /// The rest whisker's clearance with object k this frame (only whether and where it is inside matters: links
+  /// clear by more than a link's length are skipped), or, where the whisker has not moved
+  /// (in the object's frame) by as much as the lower bound of its gap when it was last computed, a positive lower
+  /// bound: a whisker far from an object queries it only every so many frames.
+  double object_clearance(std::size_t k, const PlacedShape& object, double& arc_length);
 
   const Whisker& whisker_;
   TrackerOptions options_;
@@ -129,6 +132,10 @@ class ContactTracker {
   std::vector<Eigen::Vector3d> nodes_prev_W_, nodes_now_W_;  // rest nodes, sized once
   std::vector<EdgeSegment> edges_prev_;                      // capacity kept across frames
   std::vector<double> clearance_prev_;                       // objects: the rest whisker's clearance last frame
+  /// Objects: the lower bound of the rest whisker's gap where it was last computed, and its nodes then (in the
+  /// object's frame) (object_clearance).
+  std::vector<double> clearance_bound_;
+  std::vector<std::vector<Eigen::Vector3d>> clearance_nodes_O_;
 
   // History of the current contact.
   int edge_ = -1;

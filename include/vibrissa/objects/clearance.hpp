@@ -17,6 +17,9 @@ struct Clearance {
   double arc_length = 0.0;                                ///< where along the whisker [m]
   Eigen::Vector3d point_W = Eigen::Vector3d::Zero();      ///< the centre-line point there
   Eigen::Vector3d normal_W = Eigen::Vector3d::UnitZ();    ///< the object's normal there
+  /// No point of the polyline has a smaller gap [m], whatever the shape (from the gaps and bounds of the nodes and
+  /// the gap's Lipschitz constant along each link): how far it may move before it can enter the object.
+  double lower_bound = -std::numeric_limits<double>::infinity();
 };
 
 /// The smallest gap of the polyline `nodes_W` (arc lengths `arc`, radii `radii` or none) to the placed shape, if
@@ -24,7 +27,10 @@ struct Clearance {
 /// than the distance moved, so a node's gap bounds its neighbourhood; the shape's bounds bound the rest); on each
 /// remaining link the minimum is found from its ends' gaps and slopes (exact for convex shapes; the nearest
 /// local minimum on a mesh). Result gap = +infinity if nothing is below the threshold.
+/// `first_below`: returns at the first point found below the threshold (whether there is one, not the smallest;
+/// lower_bound then -infinity).
 Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> nodes_W, std::span<const double> arc,
-                    std::span<const double> radii, double threshold = std::numeric_limits<double>::infinity());
+                    std::span<const double> radii, double threshold = std::numeric_limits<double>::infinity(),
+                    bool first_below = false);
 
 }  // namespace vibrissa
