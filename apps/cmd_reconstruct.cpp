@@ -23,7 +23,8 @@ namespace vibrissa::cli {
 namespace {
 
 struct ReconstructArgs {
-  std::string top, front, calibration, out, report;
+  std::string top, front, out, report, calibration_unit;
+  std::vector<std::string> calibrations;
   std::string top_camera = "top", front_camera = "front";
   recon::TrackSelection top_sel, front_sel;
   std::string bodyparts;
@@ -49,7 +50,10 @@ void register_reconstruct(CLI::App& app) {
   auto& opt = a->options;
   cmd->add_option("--top", a->top, "top-view tracks: .csv (plain or DeepLabCut), .h5 (DeepLabCut) or .whiskers")->required();
   cmd->add_option("--front", a->front, "front-view tracks, same formats")->required();
-  cmd->add_option("--calibration", a->calibration, "calibration JSON (pinhole or DLT cameras)")->required();
+  cmd->add_option("--calibration", a->calibrations,
+                  "calibration: cameras.json (vibrissa), calibration.toml (anipose) or NAME=file.yml|.json (one camera, "
+                  "OpenCV FileStorage); repeat to combine")->required();
+  cmd->add_option("--calibration-unit", a->calibration_unit, "length unit of anipose / OpenCV calibrations: m, mm or um");
   cmd->add_option("-o,--out", a->out, "output trial file (.h5, .csv or .mat)")->required();
   cmd->add_option("--top-camera", a->top_camera, "name of the top camera in the calibration")->capture_default_str();
   cmd->add_option("--front-camera", a->front_camera, "name of the front camera")->capture_default_str();
@@ -67,6 +71,10 @@ void register_reconstruct(CLI::App& app) {
   cmd->add_option("--base-jump-um", a->base_jump_um, "flag frames whose base leaves the local median by more [um]")->capture_default_str();
   cmd->add_option("--fit-segments", opt.fit_segments, "knot intervals of the cubic B-spline 3D curve")->capture_default_str();
   cmd->add_option("--nodes", opt.nodes, "segments of the written 3D shape")->capture_default_str();
+  cmd->add_option("--front-frame-offset", opt.front_frame_offset, "front frame f is top frame f + N (views out of step)")->capture_default_str();
+  cmd->add_option("--min-yield", opt.min_yield, "error if fewer of the frames tracked in both views are reconstructed (0: accept any)")->capture_default_str();
+  cmd->add_option("--max-unpaired", opt.max_unpaired, "error if more of the frames are tracked in one view only")->capture_default_str();
+  cmd->add_option("--max-epipolar-px", opt.max_epipolar_px, "error if the base points' median epipolar distance exceeds this [px]")->capture_default_str();
   cmd->add_option("--report", a->report, "also write a JSON report (per-frame status, undeflected shapes)");
   cmd->callback([a] {
     auto& o = a->options;
@@ -81,8 +89,16 @@ void register_reconstruct(CLI::App& app) {
     a->front_sel.bodyparts = a->top_sel.bodyparts;
     a->front_sel.identity = a->top_sel.identity;
     a->front_sel.individual = a->top_sel.individual;
-    recon::ReconstructFiles files{a->top, a->front, a->calibration, a->top_camera, a->front_camera, a->top_sel,
-                                  a->front_sel};
+    recon::ReconstructFiles files;
+    files.top = a->top;
+    files.front = a->front;
+    files.calibration = a->calibrations.front();
+    files.more_calibrations.assign(a->calibrations.begin() + 1, a->calibrations.end());
+    files.calibration_unit = a->calibration_unit;
+    files.top_camera = a->top_camera;
+    files.front_camera = a->front_camera;
+    files.top_selection = a->top_sel;
+    files.front_selection = a->front_sel;
     std::optional<Progress> progress;  // created at the first report, when the frame count is known
     std::size_t shown = 0;
     RunControl control;

@@ -53,7 +53,9 @@ def run(cmd):
     return r.stdout
 
 
-def write_views(truth, sigma, rng, out_dir):
+def write_views(truth, sigma, rng, out_dir, front_shift=0):
+    """Top view as a plain CSV, front view as a DeepLabCut CSV. front_shift > 0: the front video starts that
+    many frames later (its frame f shows frame f + front_shift), as when two recordings were not cut alike."""
     shapes = truth["shape"]
     n = shapes.shape[0]
     dropped = set(rng.choice(n, size=int(0.02 * n), replace=False).tolist())
@@ -63,6 +65,7 @@ def write_views(truth, sigma, rng, out_dir):
     header = ["scorer" + ",synthetic" * (3 * K), "bodyparts" + "".join(f",p{k},p{k},p{k}" for k in range(K)),
               "coords" + ",x,y,likelihood" * K]
     front_rows = list(header)
+    ends_lost = set()  # frames with an end point (base or tip) lost in one view
     for i in range(n):
         shape = shapes[i][np.isfinite(shapes[i][:, 0])]
         pts = resample(shape, K)
@@ -75,20 +78,23 @@ def write_views(truth, sigma, rng, out_dir):
             bad = rng.random(K) < 0.05
             px[bad] += rng.normal(0.0, 30.0, (bad.sum(), 2))
             like[bad] = rng.uniform(0.0, 0.3, bad.sum())
+            if bad[0] or bad[-1]:
+                ends_lost.add(i)
             if view == "top":
                 top_rows += [f"{i},{k},{px[k,0]:.4f},{px[k,1]:.4f},{like[k]:.3f}" for k in range(K)]
-            elif i not in dropped:
-                front_rows.append(f"{i}," + ",".join(f"{px[k,0]:.4f},{px[k,1]:.4f},{like[k]:.3f}" for k in range(K)))
+            elif i not in dropped and i >= front_shift:
+                front_rows.append(f"{i - front_shift}," +
+                                  ",".join(f"{px[k,0]:.4f},{px[k,1]:.4f},{like[k]:.3f}" for k in range(K)))
     with open(os.path.join(out_dir, "top.csv"), "w") as f:
         f.write("\n".join(top_rows) + "\n")
     with open(os.path.join(out_dir, "front_dlc.csv"), "w") as f:
         f.write("\n".join(front_rows) + "\n")
-    return dropped, swapped
+    return dropped, swapped, ends_lost
 
 
-def calibration_json(path):
+def calibration_json(path, cameras=None):
     cams = {}
-    for name, (K, R, C, k1, k2) in CAMERAS.items():
+    for name, (K, R, C, k1, k2) in (cameras or CAMERAS).items():
         cams[name] = {"model": "pinhole", "K": K.tolist(), "R": R.tolist(), "t": (-R @ C).tolist(), "k1": k1, "k2": k2}
     with open(path, "w") as f:
         json.dump({"length_unit": "m", "cameras": cams}, f, indent=1)
@@ -96,6 +102,34 @@ def calibration_json(path):
 
 def wrap_deg(a):
     return (np.degrees(a) + 180.0) % 360.0 - 180.0
+
+
+def rot_x(deg):
+    c, s = np.cos(np.radians(deg)), np.sin(np.radians(deg))
+    return np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])
+
+
+def wrong_calibrations():
+    """The calibration errors users make: focal length 0.5 % off, a camera turned by 0.1 degree after
+    calibrating, the lens distortion left out."""
+    out = {}
+    K, R, C, k1, k2 = CAMERAS["front"]
+    Kf = K.copy()
+    Kf[0, 0] *= 1.005
+    Kf[1, 1] *= 1.005
+    out["front focal length +0.5 %"] = dict(CAMERAS, front=(Kf, R, C, k1, k2))
+    K, R, C, k1, k2 = CAMERAS["top"]
+    out["top camera turned 0.1°"] = dict(CAMERAS, top=(K, rot_x(0.1) @ R, C, k1, k2))
+    out["distortion omitted"] = {name: (K, R, C, 0.0, 0.0) for name, (K, R, C, _, _) in CAMERAS.items()}
+    return out
+
+
+def reconstruct(vibrissa, top, front, cal, peg_mm, out, extra=()):
+    """Runs vibrissa reconstruct; returns (exit code, stdout + stderr)."""
+    cmd = [vibrissa, "reconstruct", "--top", top, "--front", front, "--calibration", cal,
+           "--peg-mm", *[f"{v:.9g}" for v in peg_mm], "-o", out, "--report", out.replace(".h5", "_report.json"), *extra]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    return r.returncode, (r.stdout + r.stderr).strip()
 
 
 def evaluate(truth, rec, dropped, swapped):
@@ -122,7 +156,8 @@ def evaluate(truth, rec, dropped, swapped):
         "contact_um_p95": float(np.percentile(cp_um, 95)) if len(cp_um) else float("nan"),
         "contact_missed": int((ok & c_true & ~c_rec).sum()), "contact_extra": int((ok & ~c_true & c_rec).sum()),
         "contact_true": int((ok & c_true).sum()),
-        "reprojection_px_median": float(np.nanmedian(rec["reprojection_px"][ok])),
+        "reprojection_px_median": float(np.nanmedian(rec["reprojection_px"][ok])) if ok.any() else float("nan"),
+        "reprojection_px_p95": float(np.nanpercentile(rec["reprojection_px"][ok], 95)) if ok.any() else float("nan"),
     }
 
 
@@ -135,6 +170,48 @@ def mu_of(vibrissa, trial, out):
     run([vibrissa, "trial", trial, "--out", out, "--no-figures"])
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)["friction"]["median"]
+
+
+def inconsistent_inputs(a, truth, peg_mm, cal, names):
+    """At 0.5 px: wrong calibrations, views out of step, swapped views. Each is run as given (exit code and
+    message) and, when refused, again with the checks relaxed to measure what the trial would have been."""
+    d = os.path.join(a.out, "checks")
+    os.makedirs(d, exist_ok=True)
+    relaxed = ["--min-yield", "0", "--max-unpaired", "1", "--max-epipolar-px", "1e6", "--max-reprojection-px", "1e6"]
+    rng = np.random.default_rng(a.seed)
+    dropped, swapped, _ = write_views(truth, 0.5, rng, d)
+    top, front = os.path.join(d, "top.csv"), os.path.join(d, "front_dlc.csv")
+    cases = [("correct calibration", top, front, cal, [])]
+    for label, cams in wrong_calibrations().items():
+        path = os.path.join(d, label.split()[0] + "_" + label.split()[1] + ".json")
+        calibration_json(path, cams)
+        cases.append((label, top, front, path, []))
+    cases.append(("--top and --front swapped", front, top, cal, []))
+    sd = os.path.join(d, "shifted")
+    os.makedirs(sd, exist_ok=True)
+    write_views(truth, 0.5, np.random.default_rng(a.seed), sd, front_shift=40)
+    stop, sfront = os.path.join(sd, "top.csv"), os.path.join(sd, "front_dlc.csv")
+    cases.append(("front video starts 40 frames later", stop, sfront, cal, []))
+    cases.append(("... with --front-frame-offset 40", stop, sfront, cal, ["--front-frame-offset", "40"]))
+    out = []
+    for k, (label, t, f, c, extra) in enumerate(cases):
+        rec_path = os.path.join(d, f"case{k}.h5")
+        code, msg = reconstruct(a.vibrissa, t, f, c, peg_mm, rec_path, extra)
+        row = {"case": label, "exit": code, "message": msg.splitlines()[-1] if code else ""}
+        if code:
+            row["message"] = " ".join(line.strip() for line in msg.splitlines() if line.strip().startswith("-"))
+            reconstruct(a.vibrissa, t, f, c, peg_mm, rec_path, extra + relaxed)
+        rec = load(rec_path, names)
+        ok = rec["reconstructed"].astype(bool)
+        n = min(len(ok), len(truth["base"]))
+        ok = ok[:n]
+        base = np.linalg.norm(rec["base"][:n] - truth["base"][:n], axis=1) * 1e6
+        row["reconstructed"] = f"{int(ok.sum())}/{len(rec['reconstructed'])}"
+        row["reprojection_px_median"] = float(np.nanmedian(rec["reprojection_px"][:n][ok])) if ok.any() else float("nan")
+        row["base_um_median"] = float(np.median(base[ok])) if ok.any() else float("nan")
+        out.append(row)
+        print(json.dumps(row), file=sys.stderr)
+    return out
 
 
 def main():
@@ -162,7 +239,7 @@ def main():
         d = os.path.join(a.out, f"noise_{sigma:g}px")
         os.makedirs(d, exist_ok=True)
         rng = np.random.default_rng(a.seed)
-        dropped, swapped = write_views(truth, sigma, rng, d)
+        dropped, swapped, ends_lost = write_views(truth, sigma, rng, d)
         rec_path = os.path.join(d, "reconstructed.h5")
         run([a.vibrissa, "reconstruct", "--top", os.path.join(d, "top.csv"), "--front",
              os.path.join(d, "front_dlc.csv"), "--calibration", cal, "--peg-mm", *[f"{v:.9g}" for v in peg_mm],
@@ -170,11 +247,20 @@ def main():
         rec = load(rec_path, names)
         row = evaluate(truth, rec, dropped, swapped)
         row["noise_px"] = sigma
+        ok = rec["reconstructed"].astype(bool)
+        lost = np.zeros(len(ok), bool)
+        lost[sorted(ends_lost)] = True
+        err = np.linalg.norm(rec["base"] - truth["base"], axis=1) * 1e6
+        row["base_um_median_end_lost"] = float(np.median(err[ok & lost])) if (ok & lost).any() else float("nan")
+        row["base_um_median_intact"] = float(np.median(err[ok & ~lost]))
+        row["frames_end_lost"] = int((ok & lost).sum())
         row["mu"] = mu_of(a.vibrissa, rec_path, os.path.join(d, "results"))
         rows.append(row)
         print(json.dumps(row), file=sys.stderr)
+    checks = inconsistent_inputs(a, truth, peg_mm, cal, names)
     with open(os.path.join(a.out, "validation.json"), "w") as f:
-        json.dump({"mu_true": MU_TRUE, "mu_from_true_trial": mu_truth_trial, "rows": rows}, f, indent=1)
+        json.dump({"mu_true": MU_TRUE, "mu_from_true_trial": mu_truth_trial, "rows": rows, "checks": checks}, f,
+                  indent=1)
     print(f"truth: mu = {MU_TRUE}; `vibrissa trial` on the synthetic trial itself: median mu = {mu_truth_trial:.4f}")
     print("| noise [px] | reconstructed | dropped flagged | swaps flagged | base [µm] median / p95 | θ [°] median / p95 "
           "| φ [°] median / p95 | ζ free [°] median / p95 | contact point [µm] median / p95 | contact missed / extra "
@@ -187,6 +273,20 @@ def main():
               f"| {r['zeta_free_deg_median']:.2f} / {r['zeta_free_deg_p95']:.2f} "
               f"| {r['contact_um_median']:.0f} / {r['contact_um_p95']:.0f} "
               f"| {r['contact_missed']} / {r['contact_extra']} of {r['contact_true']} | {r['mu']:.3f} |")
+    print()
+    print("| noise [px] | reprojection [px] median / p95 | base [µm] median, frames with an end lost in one view "
+          "(n) / intact |")
+    print("|---|---|---|")
+    for r in rows:
+        print(f"| {r['noise_px']:g} | {r['reprojection_px_median']:.3f} / {r['reprojection_px_p95']:.3f} "
+              f"| {r['base_um_median_end_lost']:.1f} ({r['frames_end_lost']}) / {r['base_um_median_intact']:.1f} |")
+    print()
+    print("| input (0.5 px noise) | exit | reconstructed | reprojection [px] median | base [µm] median | message |")
+    print("|---|---|---|---|---|---|")
+    for c in checks:
+        msg = c["message"].replace("|", "/").replace("\n", " ")
+        print(f"| {c['case']} | {c['exit']} | {c['reconstructed']} | {c['reprojection_px_median']:.2f} "
+              f"| {c['base_um_median']:.0f} | {msg} |")
     if a.figure:
         import matplotlib
         matplotlib.use("Agg")

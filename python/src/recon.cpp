@@ -1,6 +1,7 @@
 // Reconstruction from Python (docs/python.md, "Reconstruction"): vibrissa.reconstruct runs the library call of
 // `vibrissa reconstruct` (recon::reconstruct_files) through run_interruptible (GIL released, Ctrl-C,
 // progress), so Python and the CLI give the same trial.
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,6 +10,7 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "interruptible.hpp"
+#include "vibrissa/recon/calibration_files.hpp"
 #include "vibrissa/recon/reconstruct_files.hpp"
 
 namespace vibrissa::python {
@@ -75,6 +77,23 @@ void bind_recon(py::module_& m) {
       py::arg("whisker_id"), py::arg("top_measurements"), py::arg("front_measurements"), py::arg("min_likelihood"),
       py::arg("max_reprojection_px"), py::arg("contact_threshold"), py::arg("base_jump"), py::arg("fit_segments"),
       py::arg("nodes"), py::arg("frame_rate"), py::arg("source"), py::arg("progress"));
+  // The pixels of world points [m] through one camera of a calibration (recon::read_calibration), with its
+  // distortion: what the reconstruction assumes, checked against cv2.projectPoints in python/tests.
+  m.def(
+      "_project_points",
+      [](const std::string& calibration, const std::string& camera, const std::vector<std::array<double, 3>>& points_W,
+         const std::string& calibration_unit) {
+        const auto cams = recon::read_calibration(calibration, calibration_unit);
+        const auto it = cams.find(camera);
+        if (it == cams.end()) throw std::invalid_argument(calibration + ": no camera named '" + camera + "'");
+        std::vector<std::array<double, 2>> out;
+        for (const auto& p : points_W) {
+          const Eigen::Vector2d px = it->second.project(Eigen::Vector3d(p[0], p[1], p[2]));
+          out.push_back({px.x(), px.y()});
+        }
+        return out;
+      },
+      py::arg("calibration"), py::arg("camera"), py::arg("points_W"), py::arg("calibration_unit"));
 }
 
 }  // namespace vibrissa::python

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "vibrissa/io/json_file.hpp"
@@ -19,20 +20,6 @@ namespace {
   throw std::invalid_argument(where + ": " + message);
 }
 
-/// r_ideal with r_ideal (1 + k1 r^2 + k2 r^4) = r_distorted (Newton from r_distorted).
-double undistort_radius(double r_d, double k1, double k2) {
-  double r = r_d;
-  for (int it = 0; it < 100; ++it) {
-    const double r2 = r * r;
-    const double f = r * (1.0 + k1 * r2 + k2 * r2 * r2) - r_d;
-    const double df = 1.0 + 3.0 * k1 * r2 + 5.0 * k2 * r2 * r2;
-    const double step = f / df;
-    r -= step;
-    if (std::abs(step) <= 1e-16 * std::max(1.0, r)) break;
-  }
-  return r;
-}
-
 }  // namespace
 
 Eigen::Vector2d Camera::project(const Eigen::Vector3d& p_W) const {
@@ -41,27 +28,88 @@ Eigen::Vector2d Camera::project(const Eigen::Vector3d& p_W) const {
     return x.hnormalized();
   }
   const Eigen::Vector3d p_C = R_CW * p_W + t_C;
-  Eigen::Vector2d n = p_C.hnormalized();
-  const double r2 = n.squaredNorm();
-  n *= 1.0 + k1 * r2 + k2 * r2 * r2;
-  return (K * n.homogeneous()).hnormalized();
+  return (K * distortion.apply(p_C.hnormalized()).homogeneous()).hnormalized();
 }
 
 Eigen::Vector2d Camera::undistort(const Eigen::Vector2d& pixel) const {
-  if (model == Model::dlt || (k1 == 0.0 && k2 == 0.0)) return pixel;
+  if (model == Model::dlt || distortion.none()) return pixel;
   const Eigen::Vector2d d = (K.inverse() * pixel.homogeneous()).hnormalized();
-  const double r_d = d.norm();
-  if (r_d == 0.0) return pixel;
-  const Eigen::Vector2d n = d * (undistort_radius(r_d, k1, k2) / r_d);
-  return (K * n.homogeneous()).hnormalized();
+  return (K * distortion.remove(d).homogeneous()).hnormalized();
+}
+
+bool Distortion::none() const {
+  return k1 == 0.0 && k2 == 0.0 && p1 == 0.0 && p2 == 0.0 && k3 == 0.0 && k4 == 0.0 && k5 == 0.0 && k6 == 0.0;
+}
+
+Eigen::Vector2d Distortion::apply(const Eigen::Vector2d& n) const {
+  const double x = n.x(), y = n.y(), r2 = x * x + y * y, r4 = r2 * r2, r6 = r4 * r2;
+  const double radial = (1.0 + k1 * r2 + k2 * r4 + k3 * r6) / (1.0 + k4 * r2 + k5 * r4 + k6 * r6);
+  return {x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x),
+          y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y};
+}
+
+Eigen::Vector2d Distortion::remove(const Eigen::Vector2d& n_d) const {
+  Eigen::Vector2d n = n_d;
+  constexpr double h = 1e-7;
+  for (int it = 0; it < 50; ++it) {
+    const Eigen::Vector2d f = apply(n) - n_d;
+    if (f.norm() <= 1e-15 * std::max(1.0, n_d.norm())) return n;
+    Eigen::Matrix2d J;  // central differences: exact to ~1e-9, enough for Newton's quadratic convergence here
+    for (int k = 0; k < 2; ++k) {
+      Eigen::Vector2d e = Eigen::Vector2d::Zero();
+      e[k] = h;
+      J.col(k) = (apply(n + e) - apply(n - e)) / (2.0 * h);
+    }
+    const Eigen::Vector2d step = J.partialPivLu().solve(f);
+    if (!step.allFinite()) break;
+    n -= step;
+  }
+  if ((apply(n) - n_d).norm() <= 1e-12 * std::max(1.0, n_d.norm())) return n;
+  throw std::invalid_argument("distortion: cannot undistort the normalised point (" + std::to_string(n_d.x()) + ", " +
+                              std::to_string(n_d.y()) + "): outside the range where the lens model is invertible");
+}
+
+Distortion Distortion::from_opencv(const std::vector<double>& c, const std::string& where) {
+  if (c.size() != 4 && c.size() != 5 && c.size() != 8)
+    fail(where, "expected 4, 5 or 8 distortion coefficients (k1, k2, p1, p2[, k3[, k4, k5, k6]]), got " +
+                    std::to_string(c.size()) + " (thin-prism and tilt terms are not supported)");
+  for (double v : c)
+    if (!std::isfinite(v)) fail(where, "distortion coefficients must be finite");
+  Distortion d;
+  d.k1 = c[0];
+  d.k2 = c[1];
+  d.p1 = c[2];
+  d.p2 = c[3];
+  if (c.size() >= 5) d.k3 = c[4];
+  if (c.size() == 8) {
+    d.k4 = c[5];
+    d.k5 = c[6];
+    d.k6 = c[7];
+  }
+  return d;
+}
+
+Eigen::Matrix3d rotation_from_rvec(const Eigen::Vector3d& rvec) {
+  const double angle = rvec.norm();
+  if (!(angle > 0.0)) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, rvec / angle).toRotationMatrix();
 }
 
 Eigen::Vector3d Camera::centre() const { return -P.leftCols<3>().inverse() * P.col(3); }
 
 Camera pinhole_camera(const Eigen::Matrix3d& K, const Eigen::Matrix3d& R_CW, const Eigen::Vector3d& t_C, double k1,
                       double k2) {
-  if (!K.allFinite() || !R_CW.allFinite() || !t_C.allFinite() || !std::isfinite(k1) || !std::isfinite(k2))
-    throw std::invalid_argument("pinhole camera: K, R, t, k1 and k2 must be finite");
+  Distortion d;
+  d.k1 = k1;
+  d.k2 = k2;
+  return pinhole_camera(K, R_CW, t_C, d);
+}
+
+Camera pinhole_camera(const Eigen::Matrix3d& K, const Eigen::Matrix3d& R_CW, const Eigen::Vector3d& t_C,
+                      const Distortion& d) {
+  if (!K.allFinite() || !R_CW.allFinite() || !t_C.allFinite() ||
+      !Eigen::Matrix<double, 8, 1>(d.k1, d.k2, d.p1, d.p2, d.k3, d.k4, d.k5, d.k6).allFinite())
+    throw std::invalid_argument("pinhole camera: K, R, t and the distortion coefficients must be finite");
   if (!(K(0, 0) > 0.0 && K(1, 1) > 0.0) || K(1, 0) != 0.0 || K(2, 0) != 0.0 || K(2, 1) != 0.0 || K(2, 2) != 1.0)
     throw std::invalid_argument("pinhole camera: K must be [[fx, s, cx], [0, fy, cy], [0, 0, 1]] with fx, fy > 0");
   if (!(R_CW.transpose() * R_CW - Eigen::Matrix3d::Identity()).isZero(1e-6) || !(R_CW.determinant() > 0.0))
@@ -71,8 +119,7 @@ Camera pinhole_camera(const Eigen::Matrix3d& K, const Eigen::Matrix3d& R_CW, con
   c.K = K;
   c.R_CW = R_CW;
   c.t_C = t_C;
-  c.k1 = k1;
-  c.k2 = k2;
+  c.distortion = d;
   c.P.leftCols<3>() = K * R_CW;
   c.P.col(3) = K * t_C;
   return c;
@@ -143,18 +190,34 @@ std::map<std::string, Camera> read_cameras_json(const std::string& path) {
       if (model == "pinhole") {
         for (const auto& [key, v] : cj.items()) {
           (void)v;
-          if (key != "model" && key != "K" && key != "R" && key != "t" && key != "k1" && key != "k2" &&
-              key != "rms_reprojection_px")
+          if (key != "model" && key != "K" && key != "R" && key != "rvec" && key != "t" && key != "dist" &&
+              key != "k1" && key != "k2" && key != "p1" && key != "p2" && key != "k3" && key != "k4" && key != "k5" &&
+              key != "k6" && key != "rms_reprojection_px")
             fail(where + "." + key + "'", "unknown field for a pinhole camera");
         }
-        for (const char* key : {"K", "R", "t"})
+        for (const char* key : {"K", "t"})
           if (!cj.contains(key)) fail(where + "." + key + "'", "required field is missing");
+        if (cj.contains("R") == cj.contains("rvec")) fail(where + ".R'", "give exactly one of 'R' (3x3) and 'rvec' (3)");
         const Eigen::Matrix3d K = matrix(cj["K"], 3, 3, where + ".K'");
-        const Eigen::Matrix3d R = matrix(cj["R"], 3, 3, where + ".R'");
+        const Eigen::Matrix3d R = cj.contains("R") ? Eigen::Matrix3d(matrix(cj["R"], 3, 3, where + ".R'"))
+                                                   : rotation_from_rvec(matrix(cj["rvec"], 3, 1, where + ".rvec'"));
         const Eigen::Vector3d t = matrix(cj["t"], 3, 1, where + ".t'") * Ls;
-        const double k1 = cj.contains("k1") ? number(cj["k1"], where + ".k1'") : 0.0;
-        const double k2 = cj.contains("k2") ? number(cj["k2"], where + ".k2'") : 0.0;
-        out.emplace(name, pinhole_camera(K, R, t, k1, k2));
+        Distortion d;
+        if (cj.contains("dist")) {
+          for (const char* key : {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"})
+            if (cj.contains(key)) fail(where + "." + key + "'", "give the distortion either as 'dist' or by name, not both");
+          if (!cj["dist"].is_array()) fail(where + ".dist'", "expected an array of 4, 5 or 8 numbers");
+          std::vector<double> c;
+          for (const auto& v : cj["dist"]) c.push_back(number(v, where + ".dist'"));
+          d = Distortion::from_opencv(c, where + ".dist'");
+        } else {
+          const std::array<std::pair<const char*, double*>, 8> named{{{"k1", &d.k1}, {"k2", &d.k2}, {"p1", &d.p1},
+                                                                       {"p2", &d.p2}, {"k3", &d.k3}, {"k4", &d.k4},
+                                                                       {"k5", &d.k5}, {"k6", &d.k6}}};
+          for (const auto& [key, value] : named)
+            if (cj.contains(key)) *value = number(cj[key], where + "." + key + "'");
+        }
+        out.emplace(name, pinhole_camera(K, R, t, d));
       } else if (model == "dlt") {
         for (const auto& [key, v] : cj.items()) {
           (void)v;
@@ -196,8 +259,8 @@ void write_cameras_json(const std::string& path, const std::map<std::string, Cam
       j["K"] = rows(c.K);
       j["R"] = rows(c.R_CW);
       j["t"] = {c.t_C.x(), c.t_C.y(), c.t_C.z()};
-      j["k1"] = c.k1;
-      j["k2"] = c.k2;
+      const Distortion& d = c.distortion;
+      j["dist"] = {d.k1, d.k2, d.p1, d.p2, d.k3, d.k4, d.k5, d.k6};
     } else {
       j["model"] = "dlt";
       j["L"] = dlt_parameters(c);

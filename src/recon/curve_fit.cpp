@@ -174,6 +174,7 @@ std::optional<FittedCurve> fit_curve(const std::vector<Eigen::Vector3d>& points,
   FittedCurve out;
   out.nodes = resample_by_arc_length(curve, derivative, 1.0, nodes);
   out.tangent0 = derivative(0.0).normalized();
+  out.dense = resample_by_arc_length(curve, derivative, 1.0, dense_links);
   for (const auto& p : out.nodes)
     if (!p.allFinite()) return std::nullopt;
   if (!out.tangent0.allFinite()) return std::nullopt;

@@ -15,7 +15,11 @@ namespace vibrissa::recon {
 struct FittedCurve {
   std::vector<Eigen::Vector3d> nodes;  ///< nodes + 1 points equally spaced in arc length, base first
   Eigen::Vector3d tangent0;            ///< unit tangent at the base
+  std::vector<Eigen::Vector3d> dense;  ///< dense_links + 1 points equally spaced in arc length (reprojection)
 };
+/// Segments of FittedCurve::dense: on a 30 mm whisker 0.19 mm each, whose chords depart from the curve by
+/// well under 0.01 px at the validation's 125 um per pixel.
+inline constexpr int dense_links = 160;
 /// nullopt when fewer than segments + 4 points carry weight (the points must be ordered base to tip).
 std::optional<FittedCurve> fit_curve(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& weights,
                                      int segments, int nodes);

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vibrissa/io/nan_reasons.hpp"
+#include "vibrissa/recon/calibration_files.hpp"
 #include "vibrissa/recon/camera.hpp"
 
 namespace vibrissa::recon {
@@ -24,7 +25,11 @@ using io::finite_or_null;
 
 ReconstructedTrial reconstruct_files(const ReconstructFiles& files, const ReconstructOptions& options,
                                      const std::string& source, const RunControl& control) {
-  const auto cams = read_cameras_json(files.calibration);
+  auto cams = read_calibration(files.calibration, files.calibration_unit);
+  for (const std::string& spec : files.more_calibrations)
+    for (auto& [name, cam] : read_calibration(spec, files.calibration_unit))
+      if (!cams.emplace(name, cam).second)
+        throw std::invalid_argument(spec + ": camera '" + name + "' is already given by another calibration");
   const Camera top_cam = named_camera(cams, files.top_camera, files.calibration);
   const Camera front_cam = named_camera(cams, files.front_camera, files.calibration);
   const Tracks2D top = read_tracks(files.top, files.top_selection);
@@ -32,6 +37,12 @@ ReconstructedTrial reconstruct_files(const ReconstructFiles& files, const Recons
   ReconstructedTrial out;
   out.reconstruction = reconstruct(top, top_cam, front, front_cam, options, control);
   out.trial = to_trial(out.reconstruction, options, {}, source);
+  if (!out.reconstruction.problems.empty()) {
+    std::string msg = "inconsistent inputs (" + files.top + ", " + files.front + ", " + files.calibration +
+                      "): " + summary_line(out);
+    for (const auto& p : out.reconstruction.problems) msg += "\n  - " + p;
+    throw InconsistentViews(msg);
+  }
   return out;
 }
 
@@ -39,10 +50,26 @@ std::string report_json(const Reconstruction& rec, int indent) {
   nlohmann::json j;
   auto& frames = j["frames"];
   frames = nlohmann::json::array();
-  for (const auto& f : rec.frames)
+  for (const auto& f : rec.frames) {
+    nlohmann::json per_view = nlohmann::json::object(), per_point = nlohmann::json::object();
+    for (std::size_t v = 0; v < rec.view_names.size(); ++v) {
+      if (v < f.view_reprojection_px.size()) per_view[rec.view_names[v]] = finite_or_null(f.view_reprojection_px[v]);
+      if (v < f.point_reprojection_px.size()) {
+        nlohmann::json d = nlohmann::json::array();
+        for (double x : f.point_reprojection_px[v]) d.push_back(finite_or_null(x));
+        per_point[rec.view_names[v]] = d;
+      }
+    }
     frames.push_back({{"frame", f.frame}, {"status", frame_status_name(f.status)}, {"points_used", f.points_used},
-                      {"reprojection_px", finite_or_null(f.reprojection_px)},
+                      {"reprojection_px", finite_or_null(f.reprojection_px)}, {"view_reprojection_px", per_view},
+                      {"point_reprojection_px", per_point}, {"outliers", f.outliers},
                       {"approach_m", finite_or_null(f.approach)}, {"contact_s_m", finite_or_null(f.contact_s)}});
+  }
+  j["checks"] = {{"frames", rec.frames.size()}, {"frames_in_both_views", rec.frames_in_both},
+                  {"reconstructed", rec.count(FrameStatus::ok)},
+                  {"base_epipolar_px_median", finite_or_null(rec.base_epipolar_px)},
+                  {"swapped_base_epipolar_px_median", finite_or_null(rec.swapped_epipolar_px)},
+                  {"problems", rec.problems}};
   auto& periods = j["contact_periods"];
   periods = nlohmann::json::array();
   for (const auto& u : rec.undeflected) {
@@ -62,9 +89,12 @@ std::string report_json(const Reconstruction& rec, int indent) {
       why.explain(at, std::string("frame flagged '") + frame_status_name(f.status) + "' (docs/reconstruction.md)");
       continue;
     }
+    why.explain(at + "/point_reprojection_px", "the point is not tracked or its likelihood is below --min-likelihood");
+    why.explain(at + "/view_reprojection_px", "every tracked point of this view is an outlier or below --min-likelihood");
     why.explain(at + "/contact_s_m", "not in contact: the whisker stays farther than the contact threshold from every edge");
     why.explain(at + "/approach_m", "the trial has no object edge to approach");
   }
+  why.explain("/checks", "no frame has the base point (point 0) tracked in both views");
   why.attach(j);
   return j.dump(indent);
 }
@@ -73,12 +103,16 @@ std::string summary_line(const ReconstructedTrial& r) {
   const Reconstruction& rec = r.reconstruction;
   std::size_t contact = 0;
   for (auto c : r.trial.contact) contact += c;
-  return std::to_string(rec.frames.size()) + " frames, " + std::to_string(rec.count(FrameStatus::ok)) +
-         " reconstructed (" + std::to_string(contact) + " in contact, " + std::to_string(rec.undeflected.size()) +
-         " contact periods); flagged: " + std::to_string(rec.count(FrameStatus::missing_view)) + " missing view, " +
+  return std::to_string(rec.frames.size()) + " frames (" + std::to_string(rec.frames_in_both) +
+         " tracked in both views), " + std::to_string(rec.count(FrameStatus::ok)) + " reconstructed (" +
+         std::to_string(contact) + " in contact, " + std::to_string(rec.undeflected.size()) +
+         " contact periods); not reconstructed: " + std::to_string(rec.count(FrameStatus::missing_view)) +
+         " missing a view, " +
          std::to_string(rec.count(FrameStatus::too_few_points)) + " too few points, " +
          std::to_string(rec.count(FrameStatus::reprojection)) + " reprojection, " +
-         std::to_string(rec.count(FrameStatus::inconsistent_base)) + " inconsistent base";
+         std::to_string(rec.count(FrameStatus::inconsistent_base)) + " inconsistent base, " +
+         std::to_string(rec.count(FrameStatus::base_not_reached)) + " base not reached; median base epipolar distance " +
+         (std::isfinite(rec.base_epipolar_px) ? std::to_string(rec.base_epipolar_px).substr(0, 6) + " px" : "n/a");
 }
 
 }  // namespace vibrissa::recon

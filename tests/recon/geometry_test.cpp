@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -140,12 +141,42 @@ TEST(CalibrationFile, RoundTripsAndNamesFileAndFieldInErrors) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find(path + ": field 'cameras.top.K'"), std::string::npos) << e.what();
   }
-  std::ofstream(path) << R"({"cameras": {"top": {"model": "pinhole", "K": [[1,0,0],[0,1,0],[0,0,1]], "R": [[1,0,0],[0,1,0],[0,0,1]], "t": [0,0,1], "k3": 0}}})";
+  std::ofstream(path) << R"({"cameras": {"top": {"model": "pinhole", "K": [[1,0,0],[0,1,0],[0,0,1]], "R": [[1,0,0],[0,1,0],[0,0,1]], "t": [0,0,1], "k7": 0}}})";
   try {
     read_cameras_json(path);
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("field 'cameras.top.k3'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("field 'cameras.top.k7'"), std::string::npos) << e.what();
   }
   std::remove(path.c_str());
+}
+
+// OpenCV's distortion model (radial, rational, tangential): undistorting a distorted point gives it back,
+// and a pinhole camera built from an rvec equals the one built from its rotation matrix.
+TEST(Camera, FullOpenCvDistortionRoundTripsAndRvecIsRodrigues) {
+  Distortion d;
+  d.k1 = -0.21;
+  d.k2 = 0.13;
+  d.p1 = 0.0012;
+  d.p2 = -0.0008;
+  d.k3 = -0.05;
+  d.k4 = 0.02;
+  d.k5 = -0.01;
+  d.k6 = 0.004;
+  for (double x : {-0.3, -0.05, 0.0, 0.12, 0.28})
+    for (double y : {-0.25, 0.0, 0.07, 0.3}) {
+      const Eigen::Vector2d n(x, y);
+      EXPECT_LT((d.remove(d.apply(n)) - n).norm(), 1e-13) << x << " " << y;
+    }
+  const Eigen::Vector3d rvec(0.31, -0.42, 0.17);
+  const Eigen::Matrix3d R = rotation_from_rvec(rvec);
+  EXPECT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 1e-15);
+  EXPECT_LT((R * rvec - rvec).norm(), 1e-15);  // the axis is fixed
+  EXPECT_NEAR(std::acos((R.trace() - 1.0) / 2.0), rvec.norm(), 1e-12);
+  Eigen::Matrix3d K;
+  K << 2400, 0, 640, 0, 2390, 480, 0, 0, 1;
+  const Camera c = pinhole_camera(K, R, Eigen::Vector3d(0.01, -0.02, 0.3), d);
+  const Eigen::Vector3d p_W(0.004, 0.003, -0.002);
+  EXPECT_LT((c.project(c.centre() + 1e-3 * (p_W - c.centre())) - c.project(p_W)).norm(), 1e-9);  // same ray
+  EXPECT_LT((c.undistort(c.project(p_W)) - (c.P * p_W.homogeneous()).hnormalized()).norm(), 1e-9);
 }

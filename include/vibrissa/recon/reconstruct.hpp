@@ -24,13 +24,19 @@ struct ReconstructOptions {
   double min_likelihood = 0.5;        ///< points below are ignored
   int min_points = 6;                 ///< matched points needed per frame
   double max_reprojection_px = 2.0;   ///< frame flagged when the RMS reprojection error exceeds this [px]
-  double outlier_px = 4.0;            ///< points whose reprojection error exceeds max(this, 3 median) are dropped
+  double outlier_px = 4.0;            ///< points farther than max(this, 3 median) from the projected curve are dropped
   int fit_segments = 6;               ///< knot intervals of the cubic B-spline 3D curve
   int nodes = 40;                     ///< points of the reconstructed shape (nodes + 1 written)
   double contact_threshold = 0.3e-3;  ///< closest approach to an edge counted as contact [m]
   double base_jump = 1.0e-3;          ///< base farther than this from the local median base is flagged [m]
   int base_window = 25;               ///< frames on each side for that median
   double frame_rate = 1000.0;         ///< [Hz]: time = frame / frame_rate
+  std::int64_t front_frame_offset = 0;  ///< the front view's frame f is frame f + offset of the top view
+  /// Checks of the inputs (Reconstruction::problems; reconstruct_files throws InconsistentViews on any):
+  double min_yield = 0.5;             ///< reconstructed / frames seen by both views below this: a problem
+  double max_unpaired = 0.05;         ///< frames seen by one view only / all frames above this (and > 2), or ranges
+                                      ///< differing by more than max(2, 1 %) frames: a problem (1: accept any)
+  double max_epipolar_px = 5.0;       ///< median epipolar distance of the base points above this: a problem
   std::vector<Edge> edges;            ///< the object (a peg is one edge); empty: no contact detection
   void validate() const;              ///< throws std::invalid_argument naming the field
 };
@@ -41,14 +47,21 @@ enum class FrameStatus : std::uint8_t {
   too_few_points,      ///< fewer than min_points above the likelihood threshold or matched
   reprojection,        ///< RMS reprojection error above max_reprojection_px
   inconsistent_base,   ///< base jumps away from its neighbours (tracker identity swap)
+  base_not_reached,    ///< the curve stops short of a base point a view tracked (its partner lost in the other view)
 };
 const char* frame_status_name(FrameStatus status);
 
 struct ReconstructedFrame {
   std::int64_t frame = 0;
   FrameStatus status = FrameStatus::missing_view;
-  std::size_t points_used = 0;
-  double reprojection_px;  ///< RMS over the points used [px]; NaN if none
+  std::size_t points_used = 0;  ///< triangulated points in the curve fit
+  /// Reprojection error [px]: RMS distance of the tracked points of every view (likelihood above the threshold,
+  /// outliers excluded) to the fitted 3D curve projected into that view; NaN if no curve was fitted.
+  double reprojection_px;
+  std::vector<double> view_reprojection_px;  ///< the same per view (top, front); empty if no curve
+  /// Per view, per tracked point: its distance to the projected curve [px]; NaN below the likelihood threshold.
+  std::vector<std::vector<double>> point_reprojection_px;
+  std::size_t outliers = 0;  ///< tracked points farther than max(outlier_px, 3 median) from the projected curve
   double likelihood;       ///< mean likelihood of the points used; NaN if none
   Eigen::Vector3d base_W;  ///< NaN unless ok
   double theta, phi, zeta;  ///< [rad], NaN unless ok
@@ -72,8 +85,18 @@ struct UndeflectedShape {
 };
 
 struct Reconstruction {
+  std::vector<std::string> view_names;     ///< the views, in the order of the per-view fields of the frames
   std::vector<ReconstructedFrame> frames;  ///< every frame tracked in either view, in order
   std::vector<UndeflectedShape> undeflected;
+  std::size_t frames_in_both = 0;          ///< frames tracked in both views
+  /// Median over frames of the symmetric epipolar distance of the two views' base points (point 0 of both
+  /// tracks, above the likelihood threshold) [ideal px]; about the pixel noise when the views agree with the
+  /// calibration; NaN if no frame has both. `swapped_epipolar_px`: the same with the views exchanged.
+  double base_epipolar_px, swapped_epipolar_px;
+  /// Inconsistent inputs, each naming the likely cause (views out of step, swapped, a wrong calibration, a low
+  /// yield); empty when none. reconstruct_files throws InconsistentViews listing them.
+  std::vector<std::string> problems;
+  Reconstruction();
   [[nodiscard]] std::size_t count(FrameStatus status) const;
 };
 

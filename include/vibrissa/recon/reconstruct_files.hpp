@@ -2,7 +2,9 @@
 // `vibrissa reconstruct` as one library call (docs/reconstruction.md), shared by the CLI and the Python
 // binding (vibrissa.reconstruct): read the calibration and both views' tracks, reconstruct every frame, build
 // the trial, and describe the result as the report JSON text.
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "vibrissa/core/run_control.hpp"
 #include "vibrissa/recon/reconstruct.hpp"
@@ -13,7 +15,9 @@ namespace vibrissa::recon {
 
 struct ReconstructFiles {
   std::string top, front;     ///< track files (read_tracks formats)
-  std::string calibration;    ///< cameras JSON (read_cameras_json)
+  std::string calibration;    ///< a calibration (read_calibration: vibrissa JSON, anipose TOML, NAME=OpenCV file)
+  std::vector<std::string> more_calibrations;  ///< further ones (e.g. one OpenCV file per camera), merged
+  std::string calibration_unit;  ///< length unit of anipose / OpenCV files (m, mm, um)
   std::string top_camera = "top", front_camera = "front";  ///< names in the calibration
   TrackSelection top_selection, front_selection;
 };
@@ -23,7 +27,13 @@ struct ReconstructedTrial {
   trial::Trial trial;  ///< to_trial(reconstruction, options, {}, source)
 };
 
-/// Reads, reconstructs and builds the trial; progress and cancellation per frame. Errors name the file.
+/// Inconsistent inputs (Reconstruction::problems): the summary line, then each problem with its likely cause.
+struct InconsistentViews : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Reads, reconstructs and builds the trial; progress and cancellation per frame. Errors name the file;
+/// inconsistent inputs throw InconsistentViews.
 ReconstructedTrial reconstruct_files(const ReconstructFiles& files, const ReconstructOptions& options,
                                      const std::string& source, const RunControl& control = {});
 
@@ -31,7 +41,7 @@ ReconstructedTrial reconstruct_files(const ReconstructFiles& files, const Recons
 /// length) and per contact period (undeflected shape and where it comes from).
 std::string report_json(const Reconstruction& reconstruction, int indent = 1);
 
-/// One line: frames, reconstructed, in contact, periods and the flagged counts.
+/// One line: frames, tracked in both views, reconstructed, in contact, periods, and why the others were not.
 std::string summary_line(const ReconstructedTrial& result);
 
 }  // namespace vibrissa::recon
