@@ -3,6 +3,7 @@ DataFrame in DeepLabCut's layout (single- and multi-animal) or a NumPy array giv
 value, as the same points in a track file; a missing file is FileNotFoundError."""
 
 import json
+import subprocess
 import warnings
 
 import numpy as np
@@ -126,3 +127,16 @@ def test_a_peg_in_mm_given_as_metres_is_warned_and_peg_is_renamed_peg_m(tmp_path
     assert not trial.contact.any() and len(report["warnings"]) == 1
     with pytest.raises(TypeError, match="both peg_m and its deprecated name peg"):
         vibrissa.reconstruct(px["top"], px["front"], cams, peg_m=peg_m, peg=peg_m)
+
+
+def test_the_cli_prints_and_reports_the_same_warning(cli, tmp_path):
+    views(tmp_path)
+    run = subprocess.run([cli, "reconstruct", "--top", str(tmp_path / "top.csv"),
+                          "--front", str(tmp_path / "front.csv"), "--calibration", str(tmp_path / "cams.json"),
+                          "--peg-mm", "16600", "11200", "0",
+                          "-o", str(tmp_path / "t.h5"), "--report", str(tmp_path / "r.json")],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    report = json.loads((tmp_path / "r.json").read_text())
+    assert len(report["warnings"]) == 1 and report["warnings"][0].startswith("edge 1 (peg) passes 20.0")
+    assert f"vibrissa reconstruct: warning: {report['warnings'][0]}" in run.stderr

@@ -101,7 +101,8 @@ std::optional<std::string> angle_series_warning(std::string_view field, const st
   if (largest > 2.0 * std::numbers::pi)
     return std::string(field) + " reaches " + sig(largest) + " rad (" + sig(largest * deg) +
            " deg), beyond a full turn" +
-           (declared_degrees ? std::string(": not an angle in degrees?") : ": degrees declared as radians (angle=rad)?");
+           (declared_degrees ? std::string(": not an angle in degrees?")
+                             : std::string(": degrees declared as radians (angle=rad)?"));
   if (declared_degrees && largest > 0.0 && largest < plausible::min_degree_series_span_rad)
     return std::string(field) + " stays within +-" + sig(largest * deg) + " deg although the file declares " +
            "angle=deg: all its values lie within +-pi, as radians would: radians declared as degrees?";
