@@ -226,14 +226,14 @@
     const c = document.createElement("canvas");
     c.className = "plot"; c.id = "plot-" + s.key; c.dataset.signal = i;
     c.addEventListener("click", (ev) => {  // click a plot: go to that time
-      const r = c.getBoundingClientRect(), m = plotMargins(r.width);
+      const r = c.getBoundingClientRect(), m = PLOT_MARGINS;
       const x = (ev.clientX - r.left - m.l) / (r.width - m.l - m.r);
       setFrame(Math.round(Math.min(1, Math.max(0, x)) * (nT - 1)));
     });
     plotsEl.appendChild(c);
     return c;
   });
-  function plotMargins() { return { l: 52, r: 8, t: 18, b: 18 }; }
+  const PLOT_MARGINS = { l: 52, r: 8, t: 18, b: 18 };  // CSS pixels around each plot
   function drawPlots() {
     const w = state.selected, t0 = meta.times[0], t1 = meta.times[nT - 1];
     plotCanvases.forEach((c, s) => {
@@ -242,7 +242,7 @@
       const g = c.getContext("2d");
       g.setTransform(dpr, 0, 0, dpr, 0, 0);
       g.clearRect(0, 0, W, H);
-      const m = plotMargins(W), pw = W - m.l - m.r, ph = H - m.t - m.b;
+      const m = PLOT_MARGINS, pw = W - m.l - m.r, ph = H - m.t - m.b;
       let lo = Infinity, hi = -Infinity;
       for (let t = 0; t < nT; t++) { const v = signalAt(s, w, t); if (Number.isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); } }
       if (!(hi >= lo)) { lo = 0; hi = 1; }

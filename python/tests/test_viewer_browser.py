@@ -224,3 +224,28 @@ def test_blobs_round_trip_exactly():
     assert blobs.add(a) == "b0" and blobs.add(codes, delta=True) == "b1"
     assert np.array_equal(decode_blob(blobs.elements[0]), a)
     assert np.array_equal(decode_blob(blobs.elements[1]), codes.ravel())
+
+
+def test_trial_page_draws_the_whisker_through_its_contact_point(browser, tmp_path):
+    trial = vibrissa.synthesize_trial(duration=0.3)
+    trial.write(str(tmp_path / "trial.h5"))  # the name TrialResult.view gives it (in the title)
+    result = vibrissa.analyze_trial(trial)
+    results = result.write(tmp_path / "trial_results")
+    page = viewer.view(tmp_path / "trial.h5", tmp_path / "trial.html")
+    assert result.view(tmp_path / "same.html").read_text() == page.read_text()  # TrialResult.view: the same page
+    browser.get_log("browser")  # clear
+    browser.get(pathlib.Path(page).as_uri())
+    WebDriverWait(browser, 60).until(lambda d: d.execute_script("return !!(window.vibrissaViewer && "
+                                                                "window.vibrissaViewer.ready)"))
+    import h5py
+    with h5py.File(results / "frames.h5", "r") as f:
+        status, point = f["cp_status"][()], np.column_stack([f[f"cp_contact_{c}"][()] for c in "xyz"]) * 1e3
+    frame = int(np.flatnonzero(status == 0)[len(np.flatnonzero(status == 0)) // 2])
+    js(browser, "window.vibrissaViewer.setFrame(arguments[0])", frame)
+    line = np.array(js(browser, "return window.vibrissaViewer.centreLine(0)")).reshape(-1, 3)
+    a, b = line[:-1], line[1:]  # distance from the contact point to the drawn polyline [mm]
+    t = np.clip(np.einsum("ij,ij->i", point[frame] - a, b - a) / np.einsum("ij,ij->i", b - a, b - a), 0, 1)
+    assert np.min(np.linalg.norm(a + t[:, None] * (b - a) - point[frame], axis=1)) < 0.05
+    assert js(browser, "return window.vibrissaViewer.meta.kind") == "trial"
+    shot(browser, "trial")
+    assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]

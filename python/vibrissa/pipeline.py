@@ -136,6 +136,17 @@ class TrialResult(_NamedArrays):
         self._outputs.write(str(directory))
         return directory
 
+    def view(self, path="trial_view.html"):
+        """Writes the interactive 3D viewer of this trial, one self-contained HTML file (docs/viewer.md; as
+        ``vibrissa view TRIAL``), and returns its path."""
+        import tempfile
+        from .viewer import write_trial_view
+        with tempfile.TemporaryDirectory(prefix="vibrissa-view-") as tmp:
+            tmp = pathlib.Path(tmp)
+            self.trial.write(str(tmp / "trial.h5"))
+            self.write(tmp / "results")
+            return write_trial_view(tmp / "trial.h5", tmp / "results", path)
+
     def figures(self, directory, window=None, whisk=None, dpi=None):
         """Draws the figures of ``vibrissa trial`` (figures/trial_figures.py, matplotlib and h5py) into
         `directory`; returns the PNG paths. ``window=(start_s, end_s)`` or ``whisk=N`` (contact period, from

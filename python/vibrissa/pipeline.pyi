@@ -32,6 +32,7 @@ class TrialResult:
     def to_xarray(self) -> Any: ...  # xarray.Dataset, = xarray.open_dataset("frames.h5")
     def write(self, directory: PathLike) -> pathlib.Path: ...
     def figures(self, directory: PathLike) -> list[pathlib.Path]: ...
+    def view(self, path: PathLike = "trial_view.html") -> pathlib.Path: ...  # docs/viewer.md
 
 def analyze_trial(trial: Union[Trial, PathLike], mu: Optional[float] = None, cutoff: float = 85.0,
                   filter_order: int = 2, no_filter: bool = False, *, mu_eq7: Optional[float] = None,

@@ -7,11 +7,12 @@ scripts (``viewer/*.js``, installed as ``vibrissa/viewer/``) are inlined when th
 are compressed base64 binary arrays (Float32 signals, Int16 shapes quantised to 1/16000 of the scene's
 extent, Uint8 states; see _Blobs), decoded by the page per head pitch when it is shown.
 
-The source is an array result (``ArrayResult``, or a ``vibrissa array`` output directory with ``array.h5``
+A trial (its file and the output directory of ``vibrissa trial``; ``TrialResult.view()``) is shown too:
+see write_trial_view. The source of an array page is an array result (``ArrayResult``, or a ``vibrissa array`` output directory with ``array.h5``
 and ``config.json``): every whisker at every frame and head pitch. ``array.h5`` keeps deflected shapes only
 for ``output.render_count`` frames of one pitch, so the shapes are simulated again from the configuration,
 one pitch at a time with every frame rendered (the same deterministic simulation); the signals are those of
-the result. Trial, sweep and solve outputs are not shown yet (docs/viewer.md, "Limits").
+the result. Sweep and solve outputs are not shown yet (docs/viewer.md, "Limits").
 """
 
 import argparse
@@ -24,7 +25,7 @@ import zlib
 
 import numpy as np
 
-__all__ = ["view", "write_array_view", "main"]
+__all__ = ["view", "write_array_view", "write_trial_view", "main"]
 
 PACKAGE = pathlib.Path(__file__).resolve().parent
 NODES = 16  # points along each whisker in the page (the simulation's 100 links are resampled)
@@ -280,7 +281,76 @@ def _set_view(meta, lo, hi, direction):
     meta["edge_radius_mm"] = float(max(0.004 * np.linalg.norm(hi - lo), 0.05))
 
 
-def view(source, out=None):
+# ---- trial ------------------------------------------------------------------------------------------------
+TRIAL_SIGNALS = [  # column of frames.h5 (contact-point mode), label, unit, scale from SI
+    ("cp_MB", "M_B", "µN·m", 1e6), ("cp_FT", "F_T", "mN", 1e3), ("cp_MD", "M_D", "deg", 180 / np.pi),
+    ("cp_FD", "F_D", "deg", 180 / np.pi), ("cp_normal_force", "F_N", "mN", 1e3)]
+EDGE_HALF_LENGTH_M = 0.02  # a trial's edges are infinite lines: drawn +-20 mm about their point
+
+
+def write_trial_view(trial_path, results, out):
+    """Writes the viewer page of a `vibrissa trial` run: the trial file and its output directory (frames.h5).
+    The whisker of each frame in contact-point mode, solved again through the contact point of frames.h5
+    (`solve_point`, the run's filtered angles, the tracked base point) and the rest shape placed by the pose
+    outside contact; signals of contact-point mode from frames.h5."""
+    import h5py
+    from . import Pose, WhiskerProperties, Whisker, read_trial, solve_point
+    trial = read_trial(str(trial_path))
+    with h5py.File(pathlib.Path(results) / "frames.h5", "r") as f:
+        d = {k: f[k][()] for k in ["time", "theta", "phi", "zeta", "contact", "cp_status", "cp_contact_x",
+                                   "cp_contact_y", "cp_contact_z"] + [c for c, *_ in TRIAL_SIGNALS]}
+    keep = np.isin(trial.time, d["time"])
+    base = np.asarray(trial.base_W)[keep]
+    if len(base) != len(d["time"]):
+        raise ValueError(f"{results}: frames.h5 does not belong to {trial_path} (its times differ)")
+    m = trial.material
+    whisker = Whisker.from_points(trial.rest_shape, properties=WhiskerProperties(
+        links=int(m["links"]), base_radius=m["base_radius"], taper_ratio=m["taper_ratio"],
+        youngs_modulus=m["youngs_modulus_Pa"], poisson_ratio=m["poisson_ratio"]))
+    converged = np.asarray(d["cp_status"]) == 0  # frames.h5 status codes: 0 converged (docs/formats.md)
+    contact_W = np.column_stack([d["cp_contact_x"], d["cp_contact_y"], d["cp_contact_z"]])
+    n = len(d["time"])
+    shapes = np.empty((n, 1, NODES, 3))
+    state = np.zeros((1, n), np.uint8)
+    for i in range(n):
+        pose = Pose(base=base[i], theta=float(d["theta"][i]), phi=float(d["phi"][i]), zeta=float(d["zeta"][i]))
+        placed = whisker.placed(pose)
+        line = np.asarray(placed.rest_nodes_W)
+        if converged[i] and np.isfinite(contact_W[i]).all():
+            sol = solve_point(placed, contact_W[i])
+            if sol.converged:
+                line, state[0, i] = np.asarray(sol.shape_W), 1
+        shapes[i, 0] = _resample(line[None])[0]
+    shapes_mm, contact_mm = shapes * 1e3, contact_W * 1e3
+    edges = np.asarray(trial.edges)
+    seg = np.stack([np.stack([e[:3] - EDGE_HALF_LENGTH_M * e[3:] / np.linalg.norm(e[3:]),
+                              e[:3] + EDGE_HALF_LENGTH_M * e[3:] / np.linalg.norm(e[3:])]) for e in edges]) * 1e3
+    lo, hi = _view_box(np.concatenate([shapes_mm.reshape(-1, 3), seg.reshape(-1, 3)]))
+    q, offset, step = _quantise(shapes_mm, lo, hi)
+    blobs = _Blobs()
+    signals = [{"key": k, "label": label, "unit": unit} for k, label, unit, _ in TRIAL_SIGNALS]
+    colour_by = [{"label": "|M_B|", "kind": "signal", "signal": 0, "abs": True},
+                 {"label": "F_T", "kind": "signal", "signal": 1, "abs": True},
+                 {"label": "contact state", "kind": "state"}]
+    meta = _base_meta("trial", f"vibrissa trial: {pathlib.Path(trial_path).name}, {n} frames, contact-point mode",
+                      d["time"], ["whisker"], signals, colour_by, "", "")
+    sig = np.stack([np.asarray(d[k], float)[None] * scale for k, _, _, scale in TRIAL_SIGNALS])
+    meta["groups"] = [{"label": "trial", "shapes": blobs.add(q, delta=True), "state": blobs.add(state),
+                       "signals": blobs.add(sig.astype(np.float32)),
+                       "contact": blobs.add(contact_mm[None].astype(np.float32)),
+                       "edges": blobs.add(np.broadcast_to(seg, (n,) + seg.shape).astype(np.float32)),
+                       "ranges": _ranges(sig)}]
+    meta["quant"] = {"offset": offset.tolist(), "step": step.tolist()}
+    meta["edges"] = len(edges)
+    meta["initial_frame"] = int(np.argmax(np.nan_to_num(d["cp_MB"])))
+    _set_view(meta, lo, hi, direction=[0.2, -0.5, 0.85])
+    return _write_page(meta, blobs, out)
+
+
+TRIAL_SUFFIXES = (".csv", ".h5", ".hdf5", ".mat")
+
+
+def view(source, out=None, results=None):
     """Writes the viewer page of `source` (an ArrayResult, or a ``vibrissa array`` output directory or its
     array.h5) and returns its path (default: ``view.html`` in the result directory)."""
     if hasattr(source, "datasets") and hasattr(source, "config"):  # an ArrayResult: through its files
@@ -292,19 +362,28 @@ def view(source, out=None):
     directory = path if path.is_dir() else path.parent
     if (directory / "array.h5").is_file() and (path.is_dir() or path.name == "array.h5"):
         return write_array_view(directory, out or directory / "view.html")
+    if path.is_file() and path.suffix.lower() in TRIAL_SUFFIXES:  # a trial file, its results as `vibrissa trial` names them
+        results = pathlib.Path(results) if results else path.parent / f"{path.stem}_results"
+        if not (results / "frames.h5").is_file():
+            raise ValueError(f"{results / 'frames.h5'} not found: run `vibrissa trial {path}` first, or give "
+                             "its output directory with --results")
+        return write_trial_view(path, results, out or results / "view.html")
     raise ValueError(f"{source}: not a result vibrissa can show (expected a `vibrissa array` output directory or its "
-                     "array.h5; trial, sweep and solve outputs are not shown yet: docs/viewer.md)")
+                     "array.h5, or a trial file; sweep and solve outputs are not shown yet: docs/viewer.md)")
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="vibrissa view", description=(
         "Write a self-contained interactive 3D viewer (one HTML file, no network) of an array result "
-        "directory (docs/viewer.md)."))
-    parser.add_argument("result", help="a `vibrissa array` output directory (or its array.h5)")
+        "directory or an analysed trial (docs/viewer.md)."))
+    parser.add_argument("result", help="a `vibrissa array` output directory (or its array.h5), or a trial file "
+                                       "analysed by `vibrissa trial`")
     parser.add_argument("-o", "--out", help="the HTML file to write (default: view.html in the result directory)")
+    parser.add_argument("--results", help="trial: the output directory of `vibrissa trial` (default: "
+                                          "<trial name>_results next to the trial)")
     args = parser.parse_args(argv)
     try:
-        path = view(args.result, args.out)
+        path = view(args.result, args.out, args.results)
     except (OSError, ValueError, KeyError) as error:
         print(f"vibrissa view: error: {error}", file=sys.stderr)
         return 1
