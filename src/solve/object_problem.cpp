@@ -119,6 +119,22 @@ S piece_gap(ClearancePiece piece, const Whisker& w, const ObjectGeometryB& g, co
 
 /// Whether a piece of the link can be lower than c: never on a line without radius or in the paper scheme (its
 /// load frame is the loaded link's chord).
+/// The whisker deflected by `state` with the load frame's axes (through the geometry's record of the last one).
+const ObjectGeometryB::Deflected& deflected_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state) {
+  const std::array<double, 7> load{state.force_x,  state.force_y,  state.force_z,   state.couple_x,
+                                   state.couple_y, state.couple_z, state.arc_length};
+  if (!g.last_deflected || g.last_deflected->load != load) {
+    ObjectGeometryB::Deflected d;
+    d.load = load;
+    d.follow = {V3<double>(1, 0, 0), V3<double>(0, 1, 0)};
+    d.k = deflect<double, true>(w, V3<double>(state.force_x, state.force_y, state.force_z),
+                                V3<double>(state.couple_x, state.couple_y, state.couple_z), state.arc_length, nullptr,
+                                &d.follow);
+    g.last_deflected = std::move(d);
+  }
+  return *g.last_deflected;
+}
+
 bool pieces_apply(const Whisker& w, const ObjectGeometryB& g) {
   return w.properties().scheme != Scheme::paper && !(g.core_B && g.core_B->radius == 0.0 && !g.thickness);
 }
@@ -300,10 +316,10 @@ ObjectAttempt attempt_tip(const Whisker& w, const Scales& sc, const ObjectGeomet
 
 ClearancePiece lowest_piece(const Whisker& w, const ObjectGeometryB& g, const LoadState& state) {
   if (!pieces_apply(w, g)) return ClearancePiece::centre;
-  FollowerVectors<double> follow{V3<double>(1, 0, 0), V3<double>(0, 1, 0)};
   const double s = state.arc_length;
-  const auto k = deflect<double, true>(w, V3<double>(state.force_x, state.force_y, state.force_z),
-                                       V3<double>(state.couple_x, state.couple_y, state.couple_z), s, nullptr, &follow);
+  const ObjectGeometryB::Deflected& d = deflected_at(w, g, state);
+  const auto& k = d.k;
+  const FollowerVectors<double>& follow = d.follow;
   const SurfacePoint at_c = g.query(to_eigen(k.p_contact_B));
   double slope = 0.0;
   const double gap_c = at_c.signed_distance - (g.thickness ? radius_at(w, s, slope) : 0.0);
@@ -322,10 +338,9 @@ ClearancePiece lowest_piece(const Whisker& w, const ObjectGeometryB& g, const Lo
 ObjectContactPoint contact_point_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state, bool tip,
                                     double sigma) {
   ObjectContactPoint p;
-  FollowerVectors<double> follow{V3<double>(1, 0, 0), V3<double>(0, 1, 0)};
-  const auto k = deflect<double, true>(w, V3<double>(state.force_x, state.force_y, state.force_z),
-                                       V3<double>(state.couple_x, state.couple_y, state.couple_z), state.arc_length,
-                                       nullptr, &follow);
+  const ObjectGeometryB::Deflected& d = deflected_at(w, g, state);
+  const auto& k = d.k;
+  const FollowerVectors<double>& follow = d.follow;
   p.c_B = to_eigen(k.p_contact_B);
   p.F_B = to_eigen(k.force_B);
   p.t_B = to_eigen(follow[0]);

@@ -25,6 +25,15 @@ struct ObjectGeometryB {
   Eigen::Vector3d offset_B = Eigen::Vector3d::Zero();
   std::optional<LineCore> core_B;  ///< the shape's line core in B
   bool thickness = true;
+  /// The whisker's kinematics (with the load frame's axes) at the last load contact_point_at or lowest_piece
+  /// deflected it with: the same load is asked for several times in a solve (checks, the piece, the outputs).
+  /// It depends on the whisker and the load alone; a geometry belongs to one solve (one thread, one whisker).
+  struct Deflected {
+    std::array<double, 7> load{};  ///< force, couple, s
+    ContactKinematics<double> k;
+    FollowerVectors<double> follow;
+  };
+  mutable std::optional<Deflected> last_deflected;
   /// The shape's query at c_B (B frame).
   [[nodiscard]] SurfacePoint query(const Eigen::Vector3d& c_B) const;
 };
