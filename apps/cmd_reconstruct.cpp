@@ -74,7 +74,7 @@ void register_reconstruct(CLI::App& app) {
   cmd->add_option("--front-frame-offset", opt.front_frame_offset, "front frame f is top frame f + N (views out of step)")->capture_default_str();
   cmd->add_option("--min-yield", opt.min_yield, "error if fewer of the frames tracked in both views are reconstructed (0: accept any)")->capture_default_str();
   cmd->add_option("--max-unpaired", opt.max_unpaired, "error if more of the frames are tracked in one view only")->capture_default_str();
-  cmd->add_option("--max-epipolar-px", opt.max_epipolar_px, "error if the base points' median epipolar distance exceeds this [px]")->capture_default_str();
+  cmd->add_option("--max-epipolar-px", opt.max_epipolar_px, "error if the base points' median epipolar distance exceeds this and 4x the median reprojection error [px]")->capture_default_str();
   cmd->add_option("--report", a->report, "also write a JSON report (per-frame status, undeflected shapes)");
   cmd->callback([a] {
     auto& o = a->options;

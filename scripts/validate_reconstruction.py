@@ -109,6 +109,11 @@ def rot_x(deg):
     return np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])
 
 
+def rot_y(deg):
+    c, s = np.cos(np.radians(deg)), np.sin(np.radians(deg))
+    return np.array([[c, 0, s], [0, 1.0, 0], [-s, 0, c]])
+
+
 def wrong_calibrations():
     """The calibration errors users make: focal length 0.5 % off, a camera turned by 0.1 degree after
     calibrating, the lens distortion left out."""
@@ -119,7 +124,8 @@ def wrong_calibrations():
     Kf[1, 1] *= 1.005
     out["front focal length +0.5 %"] = dict(CAMERAS, front=(Kf, R, C, k1, k2))
     K, R, C, k1, k2 = CAMERAS["top"]
-    out["top camera turned 0.1°"] = dict(CAMERAS, top=(K, rot_x(0.1) @ R, C, k1, k2))
+    out["top camera turned 0.1° about its x axis (along the epipolar lines)"] = dict(CAMERAS, top=(K, rot_x(0.1) @ R, C, k1, k2))
+    out["top camera turned 0.1° about its y axis (across the epipolar lines)"] = dict(CAMERAS, top=(K, rot_y(0.1) @ R, C, k1, k2))
     out["distortion omitted"] = {name: (K, R, C, 0.0, 0.0) for name, (K, R, C, _, _) in CAMERAS.items()}
     return out
 
@@ -183,7 +189,7 @@ def inconsistent_inputs(a, truth, peg_mm, cal, names):
     top, front = os.path.join(d, "top.csv"), os.path.join(d, "front_dlc.csv")
     cases = [("correct calibration", top, front, cal, [])]
     for label, cams in wrong_calibrations().items():
-        path = os.path.join(d, label.split()[0] + "_" + label.split()[1] + ".json")
+        path = os.path.join(d, "cal_" + str(len(cases)) + ".json")
         calibration_json(path, cams)
         cases.append((label, top, front, path, []))
     cases.append(("--top and --front swapped", front, top, cal, []))

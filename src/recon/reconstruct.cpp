@@ -461,12 +461,18 @@ void check_inputs(Reconstruction& rec, const Tracks2D& top, const Camera& top_ca
       msg += "; --max-unpaired " + fixed(double(unpaired) / double(all), 2) + " accepts it";
     rec.problems.push_back(msg);
   }
-  const bool disagree = std::isfinite(rec.base_epipolar_px) && rec.base_epipolar_px > o.max_epipolar_px;
+  // "Far above the noise": the limit is max_epipolar_px or 4x the median reprojection error (about the noise).
+  std::vector<double> reprojection;
+  for (const auto& f : rec.frames)
+    if (std::isfinite(f.reprojection_px)) reprojection.push_back(f.reprojection_px);
+  const double limit = std::max(o.max_epipolar_px, reprojection.empty() ? 0.0 : 4.0 * median_of(reprojection));
+  const bool disagree = std::isfinite(rec.base_epipolar_px) && rec.base_epipolar_px > limit;
   if (disagree) {
     std::string msg = "the views do not agree with the calibration: the base points lie a median " +
                       fixed(rec.base_epipolar_px) + " px from each other's epipolar lines (about the pixel noise " +
-                      "when they agree; --max-epipolar-px " + fixed(o.max_epipolar_px) + ")";
-    if (std::isfinite(rec.swapped_epipolar_px) && rec.swapped_epipolar_px <= o.max_epipolar_px)
+                      "when they agree; limit " + fixed(limit) + " px: --max-epipolar-px or 4x the median " +
+                      "reprojection error)";
+    if (std::isfinite(rec.swapped_epipolar_px) && rec.swapped_epipolar_px <= limit)
       msg += ": the views are swapped (with --top and --front exchanged, " + fixed(rec.swapped_epipolar_px) + " px)";
     else
       msg += ": views swapped or given the wrong camera names, a wrong calibration, or views out of step";

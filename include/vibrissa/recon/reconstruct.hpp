@@ -36,7 +36,8 @@ struct ReconstructOptions {
   double min_yield = 0.5;             ///< reconstructed / frames seen by both views below this: a problem
   double max_unpaired = 0.05;         ///< frames seen by one view only / all frames above this (and > 2), or ranges
                                       ///< differing by more than max(2, 1 %) frames: a problem (1: accept any)
-  double max_epipolar_px = 5.0;       ///< median epipolar distance of the base points above this: a problem
+  double max_epipolar_px = 2.0;       ///< median epipolar distance of the base points above this and above 4x the
+                                      ///< median reprojection error (about the noise): a problem
   std::vector<Edge> edges;            ///< the object (a peg is one edge); empty: no contact detection
   void validate() const;              ///< throws std::invalid_argument naming the field
 };
