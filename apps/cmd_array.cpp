@@ -57,16 +57,16 @@ void register_array(CLI::App& app) {
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
   cmd->add_option("--pitches", a->pitches, "override head.pitches_deg, e.g. -20,-10,0,10,20");
   cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::Range(0, limits::max_threads));
+      ->check(number_in(0, limits::max_threads));
   cmd->add_flag("--csv", a->csv, "also write array.csv (one row per pitch, whisker and frame)");
   cmd->add_flag("--animation", a->animation,
                 "also write the MP4 animation and its still (the interactive view.html is written by default)");
   cmd->add_flag("--gif", a->gif, "write the animation, as GIF instead of MP4 (implies --animation)");
   cmd->add_option("--frames", a->frames, "animation: number of rendered frames (overrides output.render_count)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--fps", a->fps, "animation: frames per second (default 12)")->check(CLI::PositiveNumber);
+      ->check(number_in(0, double(limits::max_array_frames)));
+  cmd->add_option("--fps", a->fps, "animation: frames per second (default 12)")->check(number_in(1e-3, 1000.0));
   cmd->add_option("--figure-dpi", a->figure_dpi, "figures and animation: resolution (default 150; 300 for print)")
-      ->check(CLI::Range(50, 1200));
+      ->check(number_in(50, 1200));
   cmd->add_flag("--no-figures", a->no_figures, "skip the animation and PNG figures (an older run's are removed)");
   cmd->add_flag("--print-default-config", a->print_default, "print the built-in configuration and exit");
   cmd->callback([a] {

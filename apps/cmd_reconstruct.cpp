@@ -62,8 +62,11 @@ void register_reconstruct(CLI::App& app) {
   cmd->add_option("--whisker-id", a->top_sel.identity, "Janelia whisker identity (measurements 'state')")->capture_default_str();
   cmd->add_option("--bodyparts", a->bodyparts, "DeepLabCut keypoints base to tip, comma-separated (default: all)");
   cmd->add_option("--individual", a->top_sel.individual, "DeepLabCut individual (multi-animal files)");
-  cmd->add_option("--peg-mm", a->pegs_mm, "vertical peg (along world z) through X Y Z [mm]; repeat for more")->expected(3)->allow_extra_args(false);
-  cmd->add_option("--edge-mm", a->edges_mm, "edge: point X Y Z [mm] and direction DX DY DZ; repeat for more")->expected(6)->allow_extra_args(false);
+  cmd->add_option("--peg-mm", a->pegs_mm, "vertical peg (along world z) through X Y Z [mm]; repeat for more")
+      ->type_size(3)->expected(1, CLI::detail::expected_max_vector_size)->type_name("X Y Z")->allow_extra_args(false);
+  cmd->add_option("--edge-mm", a->edges_mm, "edge: point X Y Z [mm] and direction DX DY DZ; repeat for more")
+      ->type_size(6)->expected(1, CLI::detail::expected_max_vector_size)->type_name("X Y Z DX DY DZ")
+      ->allow_extra_args(false);
   cmd->add_option("--frame-rate", opt.frame_rate, "frame rate [Hz]: time = frame / rate")->capture_default_str();
   cmd->add_option("--min-likelihood", opt.min_likelihood, "ignore points below this likelihood")->capture_default_str();
   cmd->add_option("--max-reprojection-px", opt.max_reprojection_px, "flag frames above this RMS reprojection error [px]")->capture_default_str();
@@ -85,6 +88,7 @@ void register_reconstruct(CLI::App& app) {
                          Eigen::Vector3d(a->edges_mm[k + 3], a->edges_mm[k + 4], a->edges_mm[k + 5])});
     o.contact_threshold = a->contact_threshold_um * 1e-6;
     o.base_jump = a->base_jump_um * 1e-6;
+    o.validate();  // every bound (--nodes included) before reading or allocating anything
     a->top_sel.bodyparts = split_list(a->bodyparts);
     a->front_sel.bodyparts = a->top_sel.bodyparts;
     a->front_sel.identity = a->top_sel.identity;

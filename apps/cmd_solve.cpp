@@ -8,9 +8,11 @@
 #include <string>
 
 #include "commands.hpp"
+#include "vibrissa/core/checks.hpp"
 #include "vibrissa/core/limits.hpp"
 #include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/case_json.hpp"
+#include "vibrissa/io/json_file.hpp"
 #include "vibrissa/io/json_input.hpp"
 
 namespace vibrissa::cli {
@@ -41,11 +43,13 @@ std::size_t solve_json_lines(std::istream& in, std::ostream& out) {
       print_warnings(result, source + ": ");
     } catch (const std::exception& e) {
       ++failed;
-      result = nlohmann::json{{"line", line_number}, {"error", e.what()}};
-      const std::string message = e.what();
+      // A message may quote the line's bytes (invalid UTF-8 included): printable text, so that writing the
+      // error line cannot fail and the batch goes on.
+      const std::string message = printable_text(e.what());
+      result = nlohmann::json{{"line", line_number}, {"error", message}};
       std::cerr << "vibrissa: error: " << (message.rfind(source, 0) == 0 ? "" : source + ": ") << message << "\n";
     }
-    out << result.dump() << std::endl;  // flushed per line: a MATLAB or shell pipe sees each result at once
+    out << io::compact_json(result) << std::endl;  // flushed per line: a MATLAB or shell pipe sees each result at once
   }
   return failed;
 }

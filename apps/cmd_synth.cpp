@@ -37,6 +37,7 @@ void register_synth(CLI::App& app) {
     trial::SynthOptions o = trial::synth_options_from_parameters(a->values);
     o.seed = a->seed;
     o.shapes = a->shapes;
+    trial::validate_synth_options(o);  // before the frame count below is used
     Progress progress("simulating frames", static_cast<std::size_t>(o.duration * o.frame_rate));
     trial::SynthStats st;
     RunControl control;

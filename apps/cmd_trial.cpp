@@ -2,6 +2,7 @@
 // contact-point, edge (and, with --mu, frictional edge) mode, run the paper's analyses and write
 // frames.csv, frames.h5, summary.json and figures (docs/trials.md). The work is trial::run_trial and
 // io::write_trial_outputs, shared with vibrissa.analyze_trial in Python.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -22,7 +23,7 @@ namespace vibrissa::cli {
 namespace {
 struct TrialArgs {
   std::string trial, out;
-  double mu = -1.0, mu_eq7 = -1.0;
+  double mu = 0.0, mu_eq7 = 0.0;  ///< used only when given (trial::run_options checks them)
   trial::TrialFlags flags;
   bool no_figures = false;
   std::vector<double> window;  ///< figures: time series over [start, end] s
@@ -46,10 +47,11 @@ void register_trial(CLI::App& app) {
   auto a = std::make_shared<TrialArgs>();
   cmd->add_option("TRIAL", a->trial, "trial file (.csv, .h5/.hdf5, .mat)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", a->out, "output directory (default: <trial name>_results next to the trial)");
-  cmd->add_option("--mu", a->mu, "also run frictional edge mode with this friction coefficient")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--mu-eq7", a->mu_eq7, "friction coefficient for eq. (7) (default: median mu of contact-point mode)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--cutoff", a->flags.cutoff, "low-pass cutoff [Hz] (spec §2.3: 85)")->check(CLI::PositiveNumber);
+  // Checked by trial::run_options (finite, >= 0) once given: nan is an error, never "not given".
+  auto* mu_opt = cmd->add_option("--mu", a->mu, "also run frictional edge mode with this friction coefficient");
+  auto* mu_eq7_opt =
+      cmd->add_option("--mu-eq7", a->mu_eq7, "friction coefficient for eq. (7) (default: median mu of contact-point mode)");
+  cmd->add_option("--cutoff", a->flags.cutoff, "low-pass cutoff [Hz] (spec §2.3: 85)");  // checked by run_options
   cmd->add_option("--filter-order", a->flags.filter_order, "Butterworth order per pass (2 or 4; filtfilt doubles it)")
       ->check(CLI::IsMember({2, 4}));
   cmd->add_flag("--no-filter", a->flags.no_filter, "do not low-pass filter the tracked signals");
@@ -63,20 +65,21 @@ void register_trial(CLI::App& app) {
                      ->delimiter(',')
                      ->expected(2);
   cmd->add_option("--whisk", a->whisk, "figures: draw the time series over contact period N (from 1)")
-      ->check(CLI::PositiveNumber)
+      ->check(number_in(1, 1e6))
       ->excludes(window);
   cmd->add_option("--figure-dpi", a->figure_dpi, "figures: PNG resolution (default 150; 300 for print)")
-      ->check(CLI::Range(50, 1200));
-  cmd->callback([a] {
+      ->check(number_in(50, 1200));
+  cmd->callback([a, mu_opt, mu_eq7_opt] {
     namespace fs = std::filesystem;
     const fs::path in(a->trial);
     const fs::path out = a->out.empty() ? in.parent_path() / (in.stem().string() + "_results") : fs::path(a->out);
     if (!a->window.empty() && !(a->window[0] < a->window[1]))
       throw std::invalid_argument("--window START_S,END_S: start must be before end");
+    if (*mu_opt) a->flags.mu = a->mu;
+    if (*mu_eq7_opt) a->flags.mu_eq7 = a->mu_eq7;
+    const trial::TrialRunOptions run_opts = trial::run_options(a->flags);  // flag errors before reading
     const trial::Trial tr = io::read_trial(a->trial);
     for (const std::string& w : trial::trial_warnings(tr)) std::cerr << "vibrissa trial: warning: " << w << "\n";
-    if (a->mu >= 0.0) a->flags.mu = a->mu;
-    if (a->mu_eq7 >= 0.0) a->flags.mu_eq7 = a->mu_eq7;
     const std::size_t contact = trial::contact_frame_count(tr);
     Progress progress("solving contact frames", contact);
     RunControl control;
@@ -85,11 +88,20 @@ void register_trial(CLI::App& app) {
       progress.advance(done - shown);
       shown = done;
     };
-    const trial::TrialRun run = trial::run_trial(tr, trial::run_options(a->flags), control);
+    const trial::TrialRun run = trial::run_trial(tr, run_opts, control);
     progress.finish();
     const io::TrialOutputs outputs = io::trial_outputs(run);
     io::write_trial_outputs(outputs, out);
     const trial::TrialAnalysis& analysis = run.analysis;
+    const std::size_t shown_dropped = std::min<std::size_t>(run.dropped_frames.size(), 10);
+    for (std::size_t k = 0; k < shown_dropped; ++k) {
+      const trial::DroppedFrame& d = run.dropped_frames[k];
+      std::cerr << "vibrissa trial: warning: frame " << d.frame << " (t = " << d.time << " s) dropped before filtering: "
+                << d.reason << "\n";
+    }
+    if (run.dropped_frames.size() > shown_dropped)
+      std::cerr << "vibrissa trial: warning: " << run.dropped_frames.size() - shown_dropped
+                << " more frames dropped (summary.json: dropped_frames)\n";
     std::cout << "vibrissa trial: " << tr.frames() << " frames, " << run.result.pre.periods.size()
               << " contact periods, " << contact << " contact frames solved in " << run.pipeline_seconds << " s\n";
     if (analysis.friction) {

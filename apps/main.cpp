@@ -8,6 +8,7 @@
 #ifdef VIBRISSA_CLI_LIGHT
 #include "full_cli.hpp"
 #endif
+#include "vibrissa/core/checks.hpp"
 #include "vibrissa/io/temporary_files.hpp"
 
 int main(int argc, char** argv) {
@@ -36,7 +37,11 @@ int main(int argc, char** argv) {
     vibrissa::io::install_cleanup_signal_handlers();
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; every flag error exits 1 like any other error (docs/conventions.md),
+    // not with CLI11's own codes (104, 105, 114, ...).
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::cerr << "vibrissa: error: " << vibrissa::printable_text(e.what()) << " (see --help)\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "vibrissa: error: " << e.what() << "\n";
     return 1;

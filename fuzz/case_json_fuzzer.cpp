@@ -28,6 +28,14 @@ void check_contract(const vibrissa::Case& c, const vibrissa::Solution& s) {
       !std::holds_alternative<vibrissa::DeadLoad>(c.load) && !std::holds_alternative<vibrissa::BaseWrenchLoad>(c.load);
   if (s.status == Status::converged && metres && !(s.residual <= c.options.tolerance))
     vibrissa::fuzz::finding("converged with a residual above the tolerance");
+  // Every reported residual belongs to the returned state (issue 23): a dead load's residual [N] is the
+  // misfit of the returned force, in the max-norm of the whisker frame (between |d|/sqrt(3) and |d|).
+  if (const auto* dead = std::get_if<vibrissa::DeadLoad>(&c.load); dead && s.force_magnitude > 0.0) {
+    const double misfit = (s.force_W - dead->force).norm();
+    const double slack = 1e-9 * dead->force.norm() + 1e-300;
+    if (!(s.residual <= misfit + slack && s.residual >= misfit / std::sqrt(3.0) - slack))
+      vibrissa::fuzz::finding("dead load: the residual is not the misfit of the returned force");
+  }
   (void)vibrissa::case_result_to_json(c, s).dump();  // the writer: every number finite, so no null
 }
 

@@ -165,9 +165,17 @@ void bind_core(py::module_& m) {
              p.links = links;
              p.base_radius = base_radius;
              p.taper_ratio = taper_ratio;
-             if (!radii.is_none()) p.radii = vector1(radii, "whisker.radii");
+             // A list given is a list used: [] is an error like a list of one (as in case JSON), never the defaults.
+             auto given_list = [](const py::object& v, const char* field) {
+               std::vector<double> out = vector1(v, field);
+               if (out.size() < 2)
+                 throw py::value_error(std::string(field) + " needs at least 2 values, got " + std::to_string(out.size()) +
+                                       " (leave it out, or None, for the default)");
+               return out;
+             };
+             if (!radii.is_none()) p.radii = given_list(radii, "whisker.radii");
              p.youngs_modulus = youngs_modulus;
-             if (!youngs_moduli.is_none()) p.youngs_moduli = vector1(youngs_moduli, "whisker.youngs_moduli");
+             if (!youngs_moduli.is_none()) p.youngs_moduli = given_list(youngs_moduli, "whisker.youngs_moduli");
              p.poisson_ratio = poisson_ratio;
              p.base = base_joint_arg(base);
              p.base_stiffness = optional_double(base_stiffness);

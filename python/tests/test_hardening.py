@@ -40,3 +40,24 @@ def test_case_file_warns_about_a_likely_unit_slip(tmp_path):
     with pytest.warns(UserWarning, match=r"whisker length 39\.99"):
         vibrissa.solve_case_file(case, tmp_path / "result.json")
     assert "whisker length 39.99" in json.loads((tmp_path / "result.json").read_text())["warnings"][0]
+
+
+# Issue 23: one validation layer, the same in Python as in case JSON and the CLI.
+@pytest.mark.parametrize("field", ["radii", "youngs_moduli"])
+def test_empty_lists_are_errors_not_defaults(field):
+    with pytest.raises(ValueError, match=rf"whisker.{field} needs at least 2 values, got 0"):
+        vibrissa.WhiskerProperties(**{field: []})
+
+
+@pytest.mark.parametrize("value", [1e-310, 5e-324, float("nan"), float("inf")])
+def test_subnormal_and_non_finite_numbers_are_rejected_naming_the_field(value):
+    with pytest.raises(ValueError, match="base_stiffness"):
+        vibrissa.WhiskerProperties(base_stiffness=value)
+    whisker = vibrissa.Whisker.from_parabola(0.03, 20.0)
+    with pytest.raises(ValueError, match="load.point"):
+        vibrissa.solve_point(whisker, [0.02, 0.004, value])
+
+
+def test_case_json_overflowing_number_names_line_and_column():
+    with pytest.raises(ValueError, match=r"line 1, column 35: the number 1e400 is beyond the range of a double"):
+        vibrissa.Case.from_json('{"whisker": {"length": 0.03, "a": 1e400}}')

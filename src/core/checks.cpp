@@ -98,21 +98,31 @@ std::optional<double> parse_decimal(std::string_view text) {
 
 void invalid_input(const std::string& message) { throw std::invalid_argument(message); }
 
+bool is_input_number(double v) {
+  return std::isfinite(v) && (v == 0.0 || std::abs(v) >= std::numeric_limits<double>::min());
+}
+
+namespace {
+const std::string kNormalRule = "finite, and 0 or at least 2.2250738585072014e-308 in magnitude (no subnormal numbers)";
+}  // namespace
+
 void require_finite(double v, std::string_view field) {
-  if (!std::isfinite(v)) invalid_input(std::string(field) + " must be finite, got " + format_value(v));
+  if (!is_input_number(v)) invalid_input(std::string(field) + " must be " + kNormalRule + ", got " + format_value(v));
 }
 
 void require_finite(const Eigen::Vector3d& v, std::string_view field) {
-  if (!v.allFinite()) invalid_input(std::string(field) + " must be finite, got " + format_value(v));
+  if (!(is_input_number(v.x()) && is_input_number(v.y()) && is_input_number(v.z())))
+    invalid_input(std::string(field) + " must be " + kNormalRule + " in every component, got " + format_value(v));
 }
 
 void require_positive(double v, std::string_view field) {
-  if (!(std::isfinite(v) && v > 0.0))
-    invalid_input(std::string(field) + " must be a positive finite number, got " + format_value(v));
+  if (!(is_input_number(v) && v > 0.0))
+    invalid_input(std::string(field) + " must be a positive finite number of at least 2.2250738585072014e-308, got " +
+                  format_value(v));
 }
 
 void require_in_range(double v, double lo, double hi, std::string_view field) {
-  if (!(v >= lo && v <= hi))
+  if (!(v >= lo && v <= hi && is_input_number(v)))
     invalid_input(std::string(field) + " must lie in [" + format_value(lo) + ", " + format_value(hi) + "], got " +
                   format_value(v));
 }

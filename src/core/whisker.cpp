@@ -9,6 +9,7 @@
 #include <Eigen/SVD>
 
 #include "vibrissa/core/rest_curve.hpp"
+#include "vibrissa/core/simple_curve.hpp"
 
 namespace vibrissa {
 namespace {
@@ -72,7 +73,8 @@ void validate(const WhiskerProperties& p) {
   if (!(std::isfinite(p.poisson_ratio) && p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5 + 1e-12))
     fail("whisker.poisson_ratio must lie in (-1, 0.5], got " + format_value(p.poisson_ratio));
   if (p.base_stiffness) {
-    require_positive(*p.base_stiffness, "whisker.base_stiffness");
+    require_in_range(*p.base_stiffness, limits::min_base_stiffness_Nm_per_rad, limits::max_base_stiffness_Nm_per_rad,
+                     "whisker.base_stiffness [N m/rad]");
     if (p.base == BaseJoint::rigid) fail("whisker.base_stiffness needs base \"elastic\", got base \"rigid\"");
   }
 }
@@ -83,6 +85,7 @@ Whisker Whisker::from_points(const std::vector<Eigen::Vector3d>& points, const W
   if (points.size() < 3) fail("whisker.points needs at least 3 points, got " + std::to_string(points.size()));
   require_at_most(points.size(), limits::max_shape_points, "whisker.points");
   for (std::size_t i = 0; i < points.size(); ++i) require_finite(points[i], "whisker.points[" + std::to_string(i) + "]");
+  require_simple_curve(points, "whisker.points");
   Eigen::Vector3d tangent0;
   std::vector<Eigen::Vector3d> nodes = resample_points(points, props.links, &tangent0);
   WhiskerProperties used = props;
@@ -96,7 +99,11 @@ Whisker Whisker::from_points(const std::vector<Eigen::Vector3d>& points, const W
   if (!R.allFinite() || !base.allFinite())
     fail("whisker.points: the curve through the points is not finite (coordinates too large or too close)");
   Whisker w;
-  w.build(std::move(nodes), used);
+  try {
+    w.build(std::move(nodes), used);
+  } catch (const std::invalid_argument& e) {
+    fail(std::string("whisker.points: the rest curve cannot be modelled: ") + e.what());
+  }
   check_rest_geometry(w, "whisker.points");
   w.placement_ = pose ? Placement(*pose) : Placement(R, base);
   return w;
@@ -114,7 +121,12 @@ Whisker Whisker::from_cubic(double length, double A, double B, const WhiskerProp
   require_finite(A, "whisker.cubic[0]");
   require_finite(B, "whisker.cubic[1]");
   Whisker w;
-  w.build(planar_polynomial_nodes(length, A, B, props.links), props);
+  try {
+    w.build(planar_polynomial_nodes(length, A, B, props.links), props);
+  } catch (const std::invalid_argument& e) {  // e.g. a curve too steep for the paper scheme's spline
+    fail(std::string("whisker.curvature/cubic (A = ") + format_value(A) + " 1/m^2, B = " + format_value(B) +
+         " 1/m): the rest curve cannot be modelled: " + e.what());
+  }
   check_rest_geometry(w, "whisker.curvature/cubic");
   w.placement_ = Placement(pose);
   return w;

@@ -118,12 +118,19 @@ Whisker whisker_from_json(const json& j, std::vector<std::string>* warnings) {
   }
   p.base_radius = number_or(j, "base_radius", "whisker", p.base_radius);
   p.taper_ratio = number_or(j, "taper_ratio", "whisker", p.taper_ratio);
-  if (j.contains("radii")) p.radii = numbers(j.at("radii"), "whisker.radii");
+  // A list given is a list used: an empty one is an error like a list of one (never "use the defaults").
+  if (j.contains("radii")) {
+    p.radii = numbers(j.at("radii"), "whisker.radii");
+    if (p.radii.size() < 2) fail("whisker.radii needs at least 2 values, got " + std::to_string(p.radii.size()));
+  }
   if (j.contains("youngs_modulus")) {
-    if (j.at("youngs_modulus").is_array())
+    if (j.at("youngs_modulus").is_array()) {
       p.youngs_moduli = numbers(j.at("youngs_modulus"), "whisker.youngs_modulus");
-    else
+      if (p.youngs_moduli.size() < 2)
+        fail("whisker.youngs_modulus as a list needs at least 2 values, got " + std::to_string(p.youngs_moduli.size()));
+    } else {
       p.youngs_modulus = number(j.at("youngs_modulus"), "whisker.youngs_modulus");
+    }
   }
   p.poisson_ratio = number_or(j, "poisson_ratio", "whisker", p.poisson_ratio);
   if (j.contains("base")) {
@@ -152,6 +159,11 @@ Whisker whisker_from_json(const json& j, std::vector<std::string>* warnings) {
     std::vector<Eigen::Vector3d> points;
     for (std::size_t i = 0; i < pts.size(); ++i) points.push_back(vec3(pts[i], "whisker.points[" + std::to_string(i) + "]"));
     if (j.contains("curvature") || j.contains("cubic")) fail("whisker.curvature/cubic cannot be combined with points");
+    // The paper scheme keeps the given points as its nodes (points.size() - 1 links): links cannot be honoured.
+    if (p.scheme == Scheme::paper && j.contains("links") && p.links != int(points.size()) - 1)
+      fail("whisker.links (" + std::to_string(p.links) + ") cannot be combined with \"scheme\": \"paper\" and points: " +
+           "the paper scheme keeps the " + std::to_string(points.size()) + " points as its nodes (" +
+           std::to_string(points.size() - 1) + " links); drop links, or use the second_order scheme to resample");
     return Whisker::from_points(points, p, pose);
   }
   const double length = number(j.at("length"), "whisker.length");

@@ -1,5 +1,6 @@
 #include "vibrissa/io/json_input.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <set>
@@ -40,7 +41,24 @@ nlohmann::json parse_json_text(std::string_view text, const std::string& source,
   try {
     return json::parse(text.begin(), text.end(), check, true, allow_comments);
   } catch (const json::exception& e) {
-    invalid_input(source + ": not valid JSON: " + quote_text(e.what()));
+    if (e.id != 406) invalid_input(source + ": not valid JSON: " + quote_text(e.what()));
+    // "number overflow parsing '1e400'" (id 406) carries no position: locate the number in the text.
+    const std::string what = e.what();
+    const auto quote_start = what.find("parsing '");
+    const auto quote_end = quote_start == std::string::npos ? quote_start : what.find('\'', quote_start + 9);
+    std::string where;
+    if (quote_end != std::string::npos) {
+      const std::string token = what.substr(quote_start + 9, quote_end - quote_start - 9);
+      if (const auto at = text.find(token); !token.empty() && at != std::string_view::npos) {
+        const auto line_start = text.rfind('\n', at);
+        const std::size_t line = 1 + std::size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n'));
+        const std::size_t column = at - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
+        where = "line " + std::to_string(line) + ", column " + std::to_string(column) + ": ";
+      }
+      invalid_input(source + ": not valid JSON: " + where + "the number " + quote_text(token) +
+                    " is beyond the range of a double (about 1.8e308)");
+    }
+    invalid_input(source + ": not valid JSON: " + quote_text(what));
   }
 }
 

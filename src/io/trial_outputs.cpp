@@ -7,6 +7,10 @@ TrialOutputs trial_outputs(const trial::TrialRun& run) {
   out.table = result_table(run.result, run.analysis);
   out.summary = summary_json(run.result, run.analysis);
   out.summary["pipeline_seconds"] = run.pipeline_seconds;
+  nlohmann::json dropped = nlohmann::json::array();
+  for (const trial::DroppedFrame& d : run.dropped_frames)
+    dropped.push_back({{"frame", d.frame}, {"time", d.time}, {"reason", d.reason}});
+  out.summary["dropped_frames"] = dropped;  // impossible samples, dropped before filtering (docs/trials.md)
   return out;
 }
 

@@ -13,6 +13,8 @@
 
 #include "curve_fit.hpp"
 #include "curve_reprojection.hpp"
+#include "vibrissa/core/checks.hpp"
+#include "vibrissa/core/limits.hpp"
 #include "vibrissa/core/pose.hpp"
 #include "vibrissa/core/rest_curve.hpp"
 #include "vibrissa/recon/geometry.hpp"
@@ -519,14 +521,16 @@ std::size_t Reconstruction::count(FrameStatus s) const {
 
 void ReconstructOptions::validate() const {
   auto require = [](bool ok, const std::string& field, double v, const char* expected) {
-    if (!ok) throw std::invalid_argument(field + " must be " + expected + ", got " + std::to_string(v));
+    if (!ok) throw std::invalid_argument(field + " must be " + expected + ", got " + format_value(v));
   };
   require(min_likelihood >= 0.0 && min_likelihood <= 1.0, "min_likelihood", min_likelihood, "in [0, 1]");
   require(min_points >= 3, "min_points", min_points, ">= 3");
   require(max_reprojection_px > 0.0, "max_reprojection_px", max_reprojection_px, "> 0");
   require(outlier_px > 0.0, "outlier_px", outlier_px, "> 0");
   require(fit_segments >= 1 && fit_segments <= 50, "fit_segments", fit_segments, "in [1, 50]");
-  require(nodes >= 2, "nodes", nodes, ">= 2");
+  // nodes + 1 points are written: at most limits::max_shape_points, the limit of every trial reader.
+  require(nodes >= 2 && nodes < int(limits::max_shape_points), "nodes", nodes,
+          ("in [2, " + std::to_string(limits::max_shape_points - 1) + "]").c_str());
   require(contact_threshold > 0.0 && std::isfinite(contact_threshold), "contact_threshold", contact_threshold, "> 0");
   require(base_jump > 0.0, "base_jump", base_jump, "> 0");
   require(base_window >= 1, "base_window", base_window, ">= 1");

@@ -1,6 +1,8 @@
 // Force mode (spec §2.1): the load is given, the shape follows explicitly. Dead loads (fixed world
 // direction) are found by solving for the follower load whose deflected direction equals the given one.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "contact_problem.hpp"
 #include "solution_check.hpp"
@@ -60,13 +62,33 @@ Solution solve_dead_load(const Whisker& w, const Placement& X, const Eigen::Vect
     const double tol = dead_load_tolerance(goal);
     return detail::levenberg_marquardt(residual, start, detail::LMBounds{}, tol, options.max_iterations);
   };
+  // Max-norm of the scaled residual of state u against the full load (not a continuation step's part of it).
+  auto full_residual = [&](const Eigen::Vector3d& u) {
+    const V3<double> F(u[0] * sc.force, u[1] * sc.force, u[2] * sc.force);
+    const auto c = deflect_for_solve<double>(w, F, V3<double>(0.0, 0.0, 0.0), arc_length);
+    return (Eigen::Vector3d(c.force_B.x, c.force_B.y, c.force_B.z) / sc.force - target_B).lpNorm<Eigen::Infinity>();
+  };
   auto lm = solve_for(target_B, u0);
   if (!lm.converged) {  // continuation in the load magnitude from the unloaded rod (u = 0: exact at zero load)
     const auto c = detail::load_continuation(
         [&](double lambda, const Eigen::Vector3d& u, bool) { return solve_for(lambda * target_B, u); },
         Eigen::Vector3d::Zero(), 1.0 / 2048.0);
     const int iterations = lm.iterations + c.iterations;
-    if (std::isfinite(c.cost)) lm = c;  // else keep the direct attempt
+    if (c.converged) {
+      lm = c;
+    } else {
+      // Every reported residual belongs to the returned state: the last continuation step converged only for
+      // a part of the load, so both candidates are judged against the whole load and the closer one is kept.
+      const double inf = std::numeric_limits<double>::infinity();
+      const double direct = std::isfinite(lm.residual) ? full_residual(lm.u) : inf;
+      const double continued = std::isfinite(c.cost) ? full_residual(c.u) : inf;
+      if (continued < direct) {
+        lm = c;
+        lm.residual = continued;
+      } else if (std::isfinite(direct)) {
+        lm.residual = direct;
+      }
+    }
     lm.converged = c.converged;
     lm.iterations = iterations;
   }

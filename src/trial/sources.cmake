@@ -6,6 +6,7 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/format.cpp
   ${CMAKE_CURRENT_LIST_DIR}/friction_analysis.cpp
   ${CMAKE_CURRENT_LIST_DIR}/kinematic_prediction.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/outliers.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pipeline.cpp
   ${CMAKE_CURRENT_LIST_DIR}/plausibility.cpp
   ${CMAKE_CURRENT_LIST_DIR}/preprocess.cpp

@@ -9,10 +9,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "vibrissa/core/checks.hpp"
+#include "vibrissa/core/limits.hpp"
 #include "vibrissa/core/rest_curve.hpp"
 #include "vibrissa/solve/solvers.hpp"
 #include "vibrissa/contact/contact_geometry.hpp"
 #include "vibrissa/contact/tracker.hpp"
+#include "vibrissa/trial/synth_parameters.hpp"
 
 namespace vibrissa::trial {
 
@@ -24,19 +27,37 @@ void require(bool ok, const std::string& what) {
 
 }  // namespace
 
-Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const RunControl& control) {
-  require(o.duration > 0.0 && o.frame_rate > 0.0, "duration and frame rate must be positive");
-  require(o.whisk_frequency > 0.0 && o.whisk_frequency < 0.5 * o.frame_rate, "whisk frequency must be in (0, fs/2)");
-  require(o.whisker_length > 0.0 && o.peg_distance > 0.0, "whisker length and peg distance must be positive");
-  require(o.mu >= 0.0 && std::isfinite(o.mu), "mu must be finite and >= 0");
+void validate_synth_options(const SynthOptions& o) {
+  // Every parameter finite first (named as the flag / keyword in its unit), then the ranges; the frame
+  // count is bounded by what `vibrissa trial` reads (limits::max_trial_frames) before anything is allocated.
+  for (const SynthParameter& p : synth_parameters()) require_finite(o.*p.field * p.unit_per_si, p.name);
+  require(o.duration > 0.0 && o.frame_rate > 0.0,
+          "duration and frame rate must be positive, got " + format_value(o.duration) + " s and " +
+              format_value(o.frame_rate) + " Hz");
+  const double frame_count = std::floor(o.duration * o.frame_rate);
+  require(frame_count <= double(limits::max_trial_frames),
+          "duration x frame_rate = " + format_value(frame_count) + " frames, more than the " +
+              std::to_string(limits::max_trial_frames) + " frames a trial may have (docs/formats.md, \"Limits\")");
+  require(o.whisk_frequency > 0.0 && o.whisk_frequency < 0.5 * o.frame_rate,
+          "whisk_hz must be in (0, frame_rate / 2), got " + format_value(o.whisk_frequency));
+  require_in_range(o.whisker_length, limits::min_whisker_length_m, limits::max_whisker_length_m, "whisker_length [m]");
+  require(o.peg_distance > 0.0, "peg_distance_mm must be positive, got " + format_value(o.peg_distance * 1e3));
+  require(o.mu >= 0.0, "mu must be >= 0, got " + format_value(o.mu));
   require(o.noise_position >= 0.0 && o.noise_angle >= 0.0, "noise levels must be >= 0");
-  require(o.protraction_fraction > 0.0 && o.protraction_fraction < 1.0, "protraction fraction must lie in (0, 1)");
-  require(o.rest_points >= 3 && o.shape_nodes >= 2, "need >= 3 rest points and >= 2 shape nodes");
-  require(std::isfinite(o.theta_center_jitter) && o.theta_center_jitter >= 0.0,
-          "theta_center_jitter_deg must be finite and >= 0, got " + std::to_string(o.theta_center_jitter * 180.0 / std::numbers::pi));
-  require(std::isfinite(o.theta_amplitude_jitter) && o.theta_amplitude_jitter >= 0.0,
-          "theta_amplitude_jitter must be finite and >= 0, got " + std::to_string(o.theta_amplitude_jitter));
+  require(o.protraction_fraction > 0.0 && o.protraction_fraction < 1.0,
+          "protraction_fraction must lie in (0, 1), got " + format_value(o.protraction_fraction));
+  require(o.rest_points >= 3 && o.shape_nodes >= 2 && std::size_t(o.rest_points) <= limits::max_shape_points &&
+              std::size_t(o.shape_nodes) < limits::max_shape_points,
+          "need 3 to " + std::to_string(limits::max_shape_points) + " rest points and 2 to " +
+              std::to_string(limits::max_shape_points - 1) + " shape nodes");
+  require(o.theta_center_jitter >= 0.0, "theta_center_jitter_deg must be >= 0, got " +
+                                            format_value(o.theta_center_jitter * 180.0 / std::numbers::pi));
+  require(o.theta_amplitude_jitter >= 0.0,
+          "theta_amplitude_jitter must be >= 0, got " + format_value(o.theta_amplitude_jitter));
+}
 
+Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const RunControl& control) {
+  validate_synth_options(o);
   Trial t;
   t.source = "synthetic";
   t.meta.material = o.material;

@@ -2,8 +2,10 @@
 
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
+#include <string>
+
+#include "vibrissa/core/checks.hpp"
 
 namespace vibrissa::trial {
 
@@ -16,9 +18,7 @@ std::size_t contact_frame_count(const Trial& trial) {
 namespace {
 void require(bool ok, const char* name, double value, const char* expected) {
   if (ok) return;
-  std::ostringstream os;
-  os << name << " must be " << expected << ", got " << value;
-  throw std::invalid_argument(os.str());
+  throw std::invalid_argument(std::string(name) + " must be " + expected + ", got " + format_value(value));
 }
 }  // namespace
 
@@ -43,7 +43,10 @@ TrialRun run_trial(const Trial& trial, const TrialRunOptions& options, const Run
   const auto t0 = std::chrono::steady_clock::now();
   TrialRun run;
   // Frames that could not be reconstructed (docs/reconstruction.md) are skipped, never filled in.
-  run.result = run_pipeline(reconstructed_frames_only(trial), options.pipeline, control);
+  // Impossible samples are dropped before the filter could spread them (docs/trials.md, "Impossible samples").
+  run.dropped_frames = impossible_frames(trial);
+  run.result = run_pipeline(reconstructed_frames_only(without_frames(trial, run.dropped_frames)), options.pipeline,
+                            control);
   run.analysis = analyse_trial(run.result, options.analysis);
   run.pipeline_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return run;

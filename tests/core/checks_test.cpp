@@ -4,6 +4,8 @@
 #include "test_helpers.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -154,4 +156,45 @@ TEST(Plausibility, PoseForceAngleSeriesAndReach) {
   EXPECT_TRUE(has(*far, "positions in mm given as metres?")) << *far;
   EXPECT_FALSE(reach_warning("edge 1 (peg)", {0.0166, 0.0112, 5.0}, up, base, 0.03));  // the line, not the point
   EXPECT_TRUE(reach_warning("load.point", {0.0166, 0.0112, 5.0}, Eigen::Vector3d::Zero(), base, 0.03));
+}
+
+// Issue 23: one rule for input numbers. Subnormals (1e-310, 5e-324) are rejected like nan and inf.
+TEST(Checks, InputNumbersAreFiniteAndZeroOrNormal) {
+  EXPECT_TRUE(is_input_number(0.0));
+  EXPECT_TRUE(is_input_number(-0.0));
+  EXPECT_TRUE(is_input_number(std::numeric_limits<double>::min()));
+  EXPECT_TRUE(is_input_number(-std::numeric_limits<double>::max()));
+  for (double bad : {1e-310, -5e-324, std::numeric_limits<double>::denorm_min(), std::nan(""),
+                     std::numeric_limits<double>::infinity()})
+    EXPECT_FALSE(is_input_number(bad)) << bad;
+  EXPECT_EQ(invalid_message([] { require_positive(1e-310, "whisker.base_stiffness"); }),
+            "whisker.base_stiffness must be a positive finite number of at least 2.2250738585072014e-308, got 1e-310");
+  EXPECT_EQ(invalid_message([] { require_finite(Eigen::Vector3d(0.02, 0.0, 1e-310), "load.point"); }),
+            "load.point must be finite, and 0 or at least 2.2250738585072014e-308 in magnitude (no subnormal numbers) "
+            "in every component, got [0.02, 0, 1e-310]");
+  EXPECT_NE(invalid_message([] { require_in_range(5e-324, -1.0, 1.0, "x"); }).find("got 5e-324"), std::string::npos);
+  EXPECT_NO_THROW(require_finite(Eigen::Vector3d(0.02, 0.0, -0.0), "load.point"));
+}
+
+// Property: every double that is_input_number refuses is refused by each require_* with the field named, and
+// every accepted one in range passes (random bit patterns cover normals, subnormals, nan and inf).
+TEST(Checks, RequireFunctionsAgreeWithTheInputNumberRule) {
+  std::uint64_t state = 0x9e3779b97f4a7c15ULL;
+  for (int k = 0; k < 20000; ++k) {
+    state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+    std::uint64_t bits = state;
+    if (k % 4 == 1) bits &= 0x800fffffffffffffULL;  // exponent 0: zero or subnormal
+    if (k % 4 == 2) bits |= 0x7ff0000000000000ULL;  // exponent all ones: inf or nan
+    double v = 0.0;
+    std::memcpy(&v, &bits, sizeof v);
+    const bool ok = is_input_number(v);
+    EXPECT_EQ(ok, std::isfinite(v) && (v == 0.0 || std::fpclassify(v) == FP_NORMAL)) << v;
+    const std::string m = invalid_message([&] { require_finite(v, "field"); });
+    EXPECT_EQ(m == "<no std::invalid_argument>", ok) << m;
+    if (!ok) {
+      EXPECT_EQ(m.rfind("field must be", 0), 0u) << m;
+    }
+    const std::string r = invalid_message([&] { require_in_range(v, -1e300, 1e300, "field"); });
+    EXPECT_EQ(r == "<no std::invalid_argument>", ok && std::abs(v) <= 1e300) << r;
+  }
 }

@@ -21,6 +21,23 @@ TEST(Whisker, ParabolaHasRequestedArcLengthAndEqualLinks) {
   for (const auto& n : w.rest_nodes_B()) EXPECT_NEAR(n.y(), 12.0 * n.x() * n.x(), 1e-12);
 }
 
+TEST(Whisker, HairpinAndSelfCrossingPointsNameTheSegments) {
+  const std::vector<Eigen::Vector3d> hairpin = {{0, 0, 0}, {0.01, 0, 0}, {0.02, 0, 0}, {0.012, 0.0001, 0},
+                                                {0.005, 0.0002, 0}};
+  EXPECT_NE(test::invalid_message([&] { (void)Whisker::from_points(hairpin, WhiskerProperties{}, std::nullopt); })
+                .find("whisker.points: segments 1 and 2 (segment k joins points k and k+1) turn back by 179 deg"),
+            std::string::npos);
+  const std::vector<Eigen::Vector3d> crossing = {{0, 0, 0}, {0.02, 0, 0}, {0.02, 0.01, 0}, {0.01, 0.01, 0},
+                                                 {0.01, -0.01, 0}};
+  EXPECT_NE(test::invalid_message([&] { (void)Whisker::from_points(crossing, WhiskerProperties{}, std::nullopt); })
+                .find("whisker.points: segments 0 and 3 (segment k joins points k and k+1) touch or cross"),
+            std::string::npos);
+  // The same crossing in 3D, lifted 1 mm apart, is a valid (if odd) curve: only touching is refused.
+  std::vector<Eigen::Vector3d> lifted = crossing;
+  lifted[3].z() = lifted[4].z() = 0.001;
+  EXPECT_NO_THROW((void)Whisker::from_points(lifted, WhiskerProperties{}, std::nullopt));
+}
+
 TEST(Whisker, StiffnessFollowsSpecFormulas) {
   WhiskerProperties p;  // E 3.3 GPa, nu 0.38, r 100 um, ratio 15
   const Whisker w = Whisker::from_parabola(0.04, 12.0, p);

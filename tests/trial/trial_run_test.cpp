@@ -125,3 +125,35 @@ TEST(TrialRun, UntaperedWhiskerHasNoZErrorFitsRatherThanNaN) {
   EXPECT_FALSE(z.fit_eq7.all.has_value());
   EXPECT_TRUE(std::none_of(z.used.begin(), z.used.end(), [](bool u) { return u; }));
 }
+
+// Issue 23: one finite outlier (base_y = 1e308 in one frame) was spread by the low-pass filter and turned every
+// contact frame into no_contact. Now it is dropped before filtering, and named with its reason.
+TEST(TrialRun, ImpossibleSampleIsDroppedBeforeFilteringNotSpread) {
+  SynthOptions so;
+  so.duration = 0.3;
+  const Trial clean = synthesize_trial(so);
+  const auto first_contact = static_cast<std::size_t>(std::find(clean.contact.begin(), clean.contact.end(), 1) -
+                                                      clean.contact.begin());
+  ASSERT_LT(first_contact + 5, clean.frames());
+  const std::size_t bad = first_contact + 5;
+  auto ok_frames = [](const TrialRun& r) {
+    return std::count_if(r.result.frames.begin(), r.result.frames.end(),
+                         [](const auto& f) { return f.contact_point.ok(); });
+  };
+  const TrialRun reference = run_trial(clean, run_options(TrialFlags{}));
+  EXPECT_TRUE(reference.dropped_frames.empty());
+  for (int kind = 0; kind < 3; ++kind) {
+    Trial t = clean;
+    if (kind == 0) t.base_W[bad].y() = 1e308;
+    if (kind == 1) t.theta[bad] = -1e300;
+    if (kind == 2) t.contact_W[bad].x() = 50.0;
+    const TrialRun run = run_trial(t, run_options(TrialFlags{}));
+    ASSERT_EQ(run.dropped_frames.size(), 1u) << kind;
+    EXPECT_EQ(run.dropped_frames[0].frame, bad);
+    EXPECT_EQ(run.dropped_frames[0].time, clean.time[bad]);
+    const char* column[] = {"base = ", "theta = -1e+300 rad", "contact point = "};
+    EXPECT_EQ(run.dropped_frames[0].reason.rfind(column[kind], 0), 0u) << run.dropped_frames[0].reason;
+    EXPECT_EQ(run.result.frames.size(), reference.result.frames.size() - 1);
+    EXPECT_GE(ok_frames(run), ok_frames(reference) - 3) << kind;  // one frame fewer, the rest as before
+  }
+}

@@ -34,12 +34,16 @@ std::optional<double> parse_decimal(std::string_view text);
 /// Throws std::invalid_argument(message).
 [[noreturn]] void invalid_input(const std::string& message);
 
-/// Throws std::invalid_argument naming `field` unless every component is finite.
+/// The one rule for a number given as input (files, flags, Python): finite, and zero or normal. A subnormal
+/// (0 < |v| < 2.2e-308, e.g. 1e-310) is rejected like nan and inf: its reciprocal or square overflows or
+/// underflows inside the model.
+bool is_input_number(double v);
+/// Throws std::invalid_argument naming `field` unless every component is_input_number.
 void require_finite(double v, std::string_view field);
 void require_finite(const Eigen::Vector3d& v, std::string_view field);
-/// ... unless v is finite and > 0.
+/// ... unless v is_input_number and > 0.
 void require_positive(double v, std::string_view field);
-/// ... unless v is finite and lo <= v <= hi.
+/// ... unless v is_input_number and lo <= v <= hi.
 void require_in_range(double v, double lo, double hi, std::string_view field);
 /// An integer field given as a double (JSON, CSV, HDF5 attributes): throws unless v is integral and in
 /// [lo, hi] (which also rules out the undefined conversion of huge values).

@@ -47,6 +47,10 @@ inline constexpr double max_radius_m = 1.0;
 inline constexpr double min_youngs_modulus_Pa = 1.0;
 inline constexpr double max_youngs_modulus_Pa = 1e15;
 inline constexpr double max_taper_ratio = 1e4;
+/// Range of the elastic base's rotational stiffness [N m/rad] (a rat whisker's own EI/L is ~1e-5; beyond the
+/// range the base compliance 1/k over- or underflows the solver's scaling).
+inline constexpr double min_base_stiffness_Nm_per_rad = 1e-12;
+inline constexpr double max_base_stiffness_Nm_per_rad = 1e12;
 /// Characters of an input value quoted in an error message; longer values are cut.
 inline constexpr std::size_t max_quoted_chars = 200;
 

@@ -56,6 +56,9 @@ struct SynthStats {
 
 /// Throws std::invalid_argument for non-physical options.
 /// Progress counts frames simulated; cancel is polled per frame.
+/// Throws std::invalid_argument naming the parameter (synth_parameters' names and units) unless every value is
+/// finite and in range and duration x frame_rate <= limits::max_trial_frames (what `vibrissa trial` reads).
+void validate_synth_options(const SynthOptions& options);
 Trial synthesize_trial(const SynthOptions& options, SynthStats* stats = nullptr, const RunControl& control = {});
 
 }  // namespace vibrissa::trial

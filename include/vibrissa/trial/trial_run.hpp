@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "vibrissa/core/run_control.hpp"
+#include "vibrissa/trial/outliers.hpp"
 #include "vibrissa/trial/analysis.hpp"
 #include "vibrissa/trial/pipeline.hpp"
 
@@ -32,6 +33,8 @@ TrialRunOptions run_options(const TrialFlags& flags);
 struct TrialRun {
   PipelineResult result;
   TrialAnalysis analysis;
+  /// Frames dropped before filtering as impossible (trial/outliers.hpp): not solved, not in the results.
+  std::vector<DroppedFrame> dropped_frames;
   double pipeline_seconds = 0.0;  ///< wall-clock time of pipeline + analyses [s] (not reproducible)
 };
 
