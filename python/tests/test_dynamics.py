@@ -83,3 +83,19 @@ def test_bad_settings_name_the_field():
         vibrissa.simulate_dynamics(whisker(), 0.01, whisking={"frequency_Hz": -2})
     with pytest.raises(ValueError, match="unknown field whisking"):
         vibrissa.simulate_dynamics(whisker(), 0.01, whisking={"amplitude": 3})
+
+
+def test_peg_release_example(tmp_path):
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("xarray")
+    import os
+    import pathlib
+    import sys
+
+    repo = pathlib.Path(__file__).resolve().parents[2]
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(vibrissa.__file__).resolve().parents[1]))
+    done = subprocess.run([sys.executable, str(repo / "examples" / "dynamics" / "peg_release.py"), "--out",
+                           str(tmp_path / "out")], capture_output=True, text=True, env=env, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "released:" in done.stdout
+    assert (tmp_path / "out" / "dynamics.png").stat().st_size > 10_000
