@@ -53,6 +53,12 @@ def test_simulation_matches_the_cli_and_its_files(cli, tmp_path):
     r.write(tmp_path / "py")
     assert (tmp_path / "py" / "summary.json").is_file()
     assert json.loads((tmp_path / "py" / "summary.json").read_text())["steps"] == r.summary["steps"]
+    assert r.summary["warnings"] == []  # 0.3 mm of 30 mm: inside the linear range
+
+
+def test_large_deflection_is_warned():
+    r = vibrissa.simulate_dynamics(whisker(), 0.005, 1000, tip_force=[0, 1e-4, 0])
+    assert len(r.summary["warnings"]) == 1 and "linearised" in r.summary["warnings"][0]
 
 
 def test_release_rings_down_at_the_first_mode():
