@@ -56,6 +56,7 @@ void register_dynamics(CLI::App& app) {
     const nlohmann::json summary = io::dynamics_summary(ts, all, c);
     io::write_dynamics_outputs(ts, summary, *out_dir);
     std::cout << summary.dump(2) << "\n";
+    for (const auto& w : summary.at("warnings")) std::cerr << "vibrissa: warning: " << w.get<std::string>() << "\n";
     if (ts.status != dynamics::SimulationStatus::completed)
       throw std::runtime_error("the integration stopped early: " + std::string(dynamics::to_string(ts.status)));
   });

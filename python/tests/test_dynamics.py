@@ -53,6 +53,12 @@ def test_simulation_matches_the_cli_and_its_files(cli, tmp_path):
     r.write(tmp_path / "py")
     assert (tmp_path / "py" / "summary.json").is_file()
     assert json.loads((tmp_path / "py" / "summary.json").read_text())["steps"] == r.summary["steps"]
+    assert r.summary["warnings"] == []  # 0.3 mm of 30 mm: inside the linear range
+
+
+def test_large_deflection_is_warned():
+    r = vibrissa.simulate_dynamics(whisker(), 0.005, 1000, tip_force=[0, 1e-4, 0])
+    assert len(r.summary["warnings"]) == 1 and "linearised" in r.summary["warnings"][0]
 
 
 def test_release_rings_down_at_the_first_mode():
@@ -83,3 +89,19 @@ def test_bad_settings_name_the_field():
         vibrissa.simulate_dynamics(whisker(), 0.01, whisking={"frequency_Hz": -2})
     with pytest.raises(ValueError, match="unknown field whisking"):
         vibrissa.simulate_dynamics(whisker(), 0.01, whisking={"amplitude": 3})
+
+
+def test_peg_release_example(tmp_path):
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("xarray")
+    import os
+    import pathlib
+    import sys
+
+    repo = pathlib.Path(__file__).resolve().parents[2]
+    env = dict(os.environ, PYTHONPATH=str(pathlib.Path(vibrissa.__file__).resolve().parents[1]))
+    done = subprocess.run([sys.executable, str(repo / "examples" / "dynamics" / "peg_release.py"), "--out",
+                           str(tmp_path / "out")], capture_output=True, text=True, env=env, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "released:" in done.stdout
+    assert (tmp_path / "out" / "dynamics.png").stat().st_size > 10_000

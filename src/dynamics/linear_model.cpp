@@ -5,12 +5,14 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include "vibrissa/core/checks.hpp"
+#include "vibrissa/core/limits.hpp"
 
 namespace vibrissa::dynamics {
 namespace {
@@ -105,6 +107,9 @@ LinearModel linear_model(const Whisker& w, const DynamicsProperties& props) {
     throw std::invalid_argument(
         "whisker.scheme must be \"second_order\" for dynamics (the paper scheme re-meshes its chain for each "
         "load), got \"paper\"");
+  if (w.links() > limits::max_dynamics_links)
+    throw std::invalid_argument("whisker.links must be at most " + std::to_string(limits::max_dynamics_links) +
+                                " for dynamics (dense 3N x 3N mass matrix and modes), got " + std::to_string(w.links()));
   const std::size_t N = static_cast<std::size_t>(w.links());
   const Eigen::Index n = at(N);
   LinearModel model;

@@ -9,6 +9,7 @@
 #include <Eigen/Cholesky>
 
 #include "vibrissa/core/checks.hpp"
+#include "vibrissa/core/limits.hpp"
 
 namespace vibrissa::dynamics {
 namespace {
@@ -82,9 +83,10 @@ void validate(const SimulationOptions& o) {
   if (!(std::isfinite(o.max_step) && o.max_step >= 0.0))
     throw std::invalid_argument("max_step must be >= 0 and finite [s], got " + format_value(o.max_step));
   if (o.max_steps < 1) throw std::invalid_argument("max_steps must be >= 1, got " + std::to_string(o.max_steps));
-  if (o.duration * o.output_rate > 1e8)
-    throw std::invalid_argument("duration * output_rate must be <= 1e8 frames, got " +
-                                format_value(o.duration * o.output_rate));
+  if (o.duration * o.output_rate + 1.0 > static_cast<double>(limits::max_array_frames))
+    throw std::invalid_argument("duration * output_rate must give at most " +
+                                std::to_string(limits::max_array_frames) + " frames, got " +
+                                format_value(o.duration * o.output_rate + 1.0));
 }
 
 TimeSeries simulate(const Whisker& w, const LinearModel& model, const Modes& modes, const BaseTrajectory& base,
@@ -132,6 +134,11 @@ TimeSeries simulate(const Whisker& w, const LinearModel& model, const Modes& mod
   TimeSeries ts;
   const long frames = static_cast<long>(std::floor(opt.duration * opt.output_rate * (1.0 + 1e-12))) + 1;
   const std::size_t N = static_cast<std::size_t>(w.links());
+  if (opt.record_nodes && static_cast<double>(frames) * static_cast<double>(3 * (N + 1)) >
+                              static_cast<double>(limits::max_array_elements))
+    throw std::invalid_argument("the node positions of " + std::to_string(frames) + " frames of " +
+                                std::to_string(N + 1) + " nodes exceed " + std::to_string(limits::max_array_elements) +
+                                " values: lower output_rate or duration, or links");
   ts.q.resize(n, frames);
   auto record = [&](long f, double t, const State& s, const Eigen::VectorXd& p) {
     const BaseMotion b = base(t);

@@ -252,6 +252,15 @@ json dynamics_summary(const dynamics::TimeSeries& ts, const dynamics::Modes& mod
   j["peak_FT_uN"] = FT * 1e6;
   j["peak_MB_uNm"] = MB * 1e6;
   j["peak_tip_displacement_mm"] = tip * 1e3;
+  // The model is linear about the rest shape (docs/dynamics.md): say so when the deflection leaves that range.
+  json warnings = json::array();
+  const double L = c.whisker.length();
+  if (tip > 0.05 * L)
+    warnings.push_back("the tip moved up to " + format_value(tip * 1e3) + " mm from rest, " +
+                       format_value(std::round(1000.0 * tip / L) / 10.0) +
+                       " % of the whisker's length: beyond the small deflections the linearised model assumes "
+                       "(docs/dynamics.md, 5 % used here)");
+  j["warnings"] = std::move(warnings);
   json f = json::array(), z = json::array();
   for (int i = 0; i < std::min(c.mode_count, modes.count()); ++i) {
     f.push_back(modes.frequency_hz(i));

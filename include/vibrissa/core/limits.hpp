@@ -37,6 +37,8 @@ inline constexpr std::uintmax_t max_csv_file_bytes = 1ull << 30;
 inline constexpr std::size_t max_csv_line_bytes = 4u << 20;
 /// Elements of one HDF5 or MATLAB array.
 inline constexpr std::size_t max_array_elements = 64'000'000;
+/// Links of a whisker in dynamics (docs/dynamics.md): the mass matrix and the modes are dense in 3N.
+inline constexpr int max_dynamics_links = 2'000;
 /// Range of a whisker's arc length [m] (beyond it the model's scaling over- or underflows; lengths outside
 /// 1 mm - 200 mm only draw a plausibility warning).
 inline constexpr double min_whisker_length_m = 1e-6;
