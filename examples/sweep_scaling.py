@@ -1,4 +1,4 @@
-"""Sweep scaling (docs/performance.md, "Sweeps"): the same array sweep serially and on a LocalCluster of worker
+"""Sweep scaling (docs/sweeps.md, "Scale"): the same array sweep serially and on a LocalCluster of worker
 processes; speed-up, Dask's overhead per task, memory of the client and the workers over the sweep, and the
 sweep again with one worker killed mid-run (its results must be bit-identical to the serial ones).
 
