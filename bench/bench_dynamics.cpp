@@ -3,6 +3,8 @@
 //   build/bench/bench_dynamics --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include "bench_whisker.hpp"
+
 #include <numbers>
 
 #include "vibrissa/dynamics/simulate.hpp"
@@ -10,13 +12,7 @@
 namespace {
 using namespace vibrissa;
 
-Whisker bench_whisker() {
-  Pose pose;
-  pose.theta = 10.0 * std::numbers::pi / 180.0;
-  pose.phi = 10.0 * std::numbers::pi / 180.0;
-  pose.zeta = 30.0 * std::numbers::pi / 180.0;
-  return Whisker::from_parabola(0.040, 12.0, WhiskerProperties{}, pose);
-}
+using bench::bench_whisker;
 
 dynamics::BaseTrajectory whisk(const Whisker& w) {
   const Pose rest = w.placement().pose();

@@ -4,6 +4,8 @@
 //   build/bench/bench_solve --benchmark_format=json --benchmark_repetitions=5 | bench/ratios.py
 #include <benchmark/benchmark.h>
 
+#include "bench_whisker.hpp"
+
 #include <numbers>
 
 #include "vibrissa/core/chain_jacobian.hpp"
@@ -12,13 +14,7 @@
 namespace {
 using namespace vibrissa;
 
-Whisker bench_whisker() {
-  Pose pose;
-  pose.theta = 10.0 * std::numbers::pi / 180.0;
-  pose.phi = 10.0 * std::numbers::pi / 180.0;
-  pose.zeta = 30.0 * std::numbers::pi / 180.0;
-  return Whisker::from_parabola(0.040, 12.0, WhiskerProperties{}, pose);
-}
+using bench::bench_whisker;
 Edge bench_peg() {
   Edge e;
   e.point = {0.020, 0.0, 0.0};
