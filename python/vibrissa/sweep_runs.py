@@ -12,6 +12,7 @@ import functools
 import hashlib
 import math
 import pathlib
+import zlib
 
 import numpy as np
 
@@ -204,8 +205,33 @@ def run_chunk(kind, base, runs, variables=None):
         _check_same_coordinates(coords, run_coords, index, overrides)
         for name, (dims, attrs, values) in run_variables.items():
             stacked.setdefault(name, (("run", *dims), attrs, []))[2].append(values)
-    out = {name: (dims, attrs, np.stack(values)) for name, (dims, attrs, values) in stacked.items()}
-    return {"runs": [index for index, _ in runs], "coords": coords, "variables": out, "build": build_id()}
+    out, packed = {}, {}
+    for name, (dims, attrs, values) in stacked.items():
+        values = np.stack(values)
+        if values[0].size >= COMPRESS_FROM:
+            packed[name] = (dims, attrs, pack(values))
+        else:
+            out[name] = (dims, attrs, values)
+    return {"runs": [index for index, _ in runs], "coords": coords, "variables": out, "packed": packed,
+            "build": build_id()}
+
+
+# Outputs of at least this many values per run are stored compressed, one HDF5 chunk per run (mostly zeros and
+# NaN: they shrink about tenfold). The worker compresses them (`pack`) and the client writes the compressed bytes
+# into sweep.nc as they are (sweep_store): the client, which has one core like each worker, neither receives
+# nor compresses the uncompressed values, so the sweep scales with the workers (docs/sweeps.md, "Scale").
+COMPRESS_FROM = 4096
+COMPRESSION_LEVEL = 1  # zlib level: HDF5's deflate filter at this level (`compression_opts`)
+
+
+def pack(values):
+    """Each run's values (values[i], C order) compressed by zlib at COMPRESSION_LEVEL, the byte stream HDF5's deflate
+    filter writes and reads: {"bytes": uint8 array of every run's stream in turn, "ends": int64 end of each,
+    "dtype": the values' dtype (str), "shape": one run's shape (list)}."""
+    streams = [zlib.compress(np.ascontiguousarray(v).tobytes(), COMPRESSION_LEVEL) for v in values]
+    return {"bytes": np.frombuffer(b"".join(streams), dtype=np.uint8),
+            "ends": np.cumsum([len(stream) for stream in streams], dtype=np.int64),
+            "dtype": values.dtype.str, "shape": list(values.shape[1:])}
 
 
 def _check_same_coordinates(expected, found, index, overrides):
