@@ -459,6 +459,7 @@
       return [r.left + ((v.x + 1) / 2) * r.width, r.top + ((1 - v.y) / 2) * r.height];
     },
     centreLine(w) { return Array.from(whiskerPositions[w]); },
+    signal(s, w, t) { return signalAt(s, w, t); },
     arrow(a) { const h = arrows[a]; return h.visible ? { origin: h.position.toArray(), direction: new THREE.Vector3(0, 1, 0).applyQuaternion(h.quaternion).toArray() } : null; },
     screenNodes() {
       const out = [];

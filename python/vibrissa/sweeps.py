@@ -179,6 +179,8 @@ def _sweep(kind, base, parameters, runs, out, variables, scheduler, workers, chu
                     progress(done_runs, len(runs))
             store.assemble(parameters, runs, {"format": "vibrissa-sweep", "kind": kind, "vibrissa": build_id(),
                                               "sweep": json.dumps(dict(spec, chunk_size=chunk_size))})
+    from .viewer import _register_accessor
+    _register_accessor()  # result.vibrissa.view(): the viewer of the sweep (docs/viewer.md)
     return xr.open_dataset(store.result_path, engine="h5netcdf")
 
 
