@@ -37,7 +37,7 @@
 
   const nW = meta.whiskers.length, nT = meta.times.length, K = meta.nodes, nS = meta.signals.length;
   // The slider's axis: time by default; a sweep of solves steps through the values of its last parameter.
-  const axis = meta.frame_axis || { label: "t", unit: "ms", scale: 1e3, digits: 1 };
+  const axis = meta.frame_axis || { label: "t", unit: "ms", scale: 1e3 };
   const axisText = (t, digits) => `${(meta.times[t] * axis.scale).toFixed(digits)}${axis.unit ? " " + axis.unit : ""}`;
   const STATE_COLOURS = ["#9a9a9a", "#D55E00", "#0072B2"];  // free, contact, pushed past (figures/style.py)
   // cividis-like sequential map (dark blue -> yellow), monotonic in lightness.

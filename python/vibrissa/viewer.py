@@ -12,7 +12,8 @@ see write_trial_view. The source of an array page is an array result (``ArrayRes
 and ``config.json``): every whisker at every frame and head pitch. ``array.h5`` keeps deflected shapes only
 for ``output.render_count`` frames of one pitch, so the shapes are simulated again from the configuration,
 one pitch at a time with every frame rendered (the same deterministic simulation); the signals are those of
-the result. Sweep and solve outputs are not shown yet (docs/viewer.md, "Limits").
+the result. A ``vibrissa solve`` result (with its case when known: write_solve_view) and a sweep's folder
+(array and solve sweeps: write_sweep_view) are shown too.
 """
 
 import argparse
