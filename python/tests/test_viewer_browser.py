@@ -247,6 +247,19 @@ def test_trial_page_draws_the_whisker_through_its_contact_point(browser, tmp_pat
     t = np.clip(np.einsum("ij,ij->i", point[frame] - a, b - a) / np.einsum("ij,ij->i", b - a, b - a), 0, 1)
     assert np.min(np.linalg.norm(a + t[:, None] * (b - a) - point[frame], axis=1)) < 0.05
     assert js(browser, "return window.vibrissaViewer.meta.kind") == "trial"
+    # F_D and M_D as the figures draw them: the stored angle (mod 360) where defined, unwrapped within a contact
+    with h5py.File(results / "frames.h5", "r") as f:
+        stored = {"MD": np.degrees(f["cp_MD"][()]), "FD": np.degrees(f["cp_FD"][()]), "period": f["period"][()]}
+    for s, name in ((2, "MD"), (3, "FD")):
+        shown = np.array(js(browser, "const v = window.vibrissaViewer; return v.meta.times.map((_, t) => v.signal("
+                                     "arguments[0], 0, t))", s), dtype=float)
+        drawn = np.isfinite(shown)
+        assert drawn.sum() > 10 and np.isfinite(stored[name][drawn]).all()
+        turns = (shown[drawn] - stored[name][drawn]) / 360
+        assert np.allclose(turns, np.round(turns), atol=1e-5)  # the same direction
+        same_period = np.diff(stored["period"]) == 0
+        steps = np.abs(np.diff(shown))[same_period & drawn[1:] & drawn[:-1]]
+        assert steps.max() < 90, (name, steps.max())  # no wrap within a contact
     shot(browser, "trial")
     assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
 

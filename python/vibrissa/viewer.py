@@ -290,6 +290,23 @@ TRIAL_SIGNALS = [  # column of frames.h5 (contact-point mode), label, unit, scal
 EDGE_HALF_LENGTH_M = 0.02  # a trial's edges are infinite lines: drawn +-20 mm about their point
 
 
+def _trial_signal(d, key, scale):
+    """A trial signal of frames.h5 in the page's units; F_D and M_D as the trial figures draw them
+    (trial_figures.signal): masked where undefined and unwrapped within each contact period (stored, they
+    wrap at +-180 deg and swing at contact onset and release)."""
+    name = key[len("cp_"):]
+    if name not in ("FD", "MD"):
+        return np.asarray(d[key], float) * scale
+    _figures_on_path()
+    import style
+    import trial_figures
+    mode = next(m for m in style.MODES if m["prefix"] == "cp_")
+    return np.asarray(trial_figures.signal(d, [mode], mode, name, "deg"), float)
+
+
+TRIAL_ANGLE_NOTE = "F_D, M_D unwrapped per contact, masked where undefined as in the figures"
+
+
 def write_trial_view(trial_path, results, out):
     """Writes the viewer page of a `vibrissa trial` run: the trial file and its output directory (frames.h5).
     The whisker of each frame in contact-point mode, solved again through the contact point of frames.h5
@@ -300,7 +317,8 @@ def write_trial_view(trial_path, results, out):
     trial = read_trial(str(trial_path))
     with h5py.File(pathlib.Path(results) / "frames.h5", "r") as f:
         d = {k: f[k][()] for k in ["time", "theta", "phi", "zeta", "contact", "cp_status", "cp_contact_x",
-                                   "cp_contact_y", "cp_contact_z"] + [c for c, *_ in TRIAL_SIGNALS]}
+                                   "cp_contact_y", "cp_contact_z", "period", "period_edge"] +
+             [c for c, *_ in TRIAL_SIGNALS]}
     keep = np.isin(trial.time, d["time"])
     base = np.asarray(trial.base_W)[keep]
     if len(base) != len(d["time"]):
@@ -336,7 +354,8 @@ def write_trial_view(trial_path, results, out):
                  {"label": "contact state", "kind": "state"}]
     meta = _base_meta("trial", f"vibrissa trial: {pathlib.Path(trial_path).name}, {n} frames, contact-point mode",
                       d["time"], ["whisker"], signals, colour_by, "", "")
-    sig = np.stack([np.asarray(d[k], float)[None] * scale for k, _, _, scale in TRIAL_SIGNALS])
+    sig = np.stack([_trial_signal(d, k, scale)[None] for k, _, _, scale in TRIAL_SIGNALS])
+    meta["title"] += f" ({TRIAL_ANGLE_NOTE})"
     meta["groups"] = [{"label": "trial", "shapes": blobs.add(q, delta=True), "state": blobs.add(state),
                        "signals": blobs.add(sig.astype(np.float32)),
                        "contact": blobs.add(contact_mm[None].astype(np.float32)),
