@@ -385,3 +385,20 @@ def test_solve_sweep_page_steps_through_the_last_parameter(browser, tmp_path):
     assert "load.point.1" in browser.find_element(By.ID, "time").text
     shot(browser, "solve_sweep")
     assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def test_trial_sweep_page_shows_each_runs_trial(browser, tmp_path):
+    result = vibrissa.sweep("trial", {"synth": {"duration": 0.12}}, out=tmp_path / "t", scheduler="serial",
+                            grid={"analysis.mu": [0.2, 0.6], "synth.seed": [1, 2]}, variables=["cp_MB", "cp_FT"])
+    page = viewer.view(tmp_path / "t", tmp_path / "t.html", runs=[0, 3])  # (mu 0.2, seed 1) and (mu 0.6, seed 2)
+    open_page(browser, page)
+    assert js(browser, "return window.vibrissaViewer.meta.group_dims[0].label") == "run"
+    select_value(browser, "pitch", 1)  # run 3: mu 0.6, seed 2
+    assert js(browser, "return window.vibrissaViewer.group") == 1
+    mb = result.cp_MB.isel({"analysis.mu": 1, "synth.seed": 1}).values * 1e6
+    shown = np.array(js(browser, "const v = window.vibrissaViewer; return v.meta.times.map((_, t) => v.signal(0, 0, t))"),
+                     dtype=float)
+    assert np.allclose(shown, mb, rtol=1e-6, atol=1e-9, equal_nan=True)  # the sweep's M_B of that run
+    other = result.cp_MB.isel({"analysis.mu": 0, "synth.seed": 0}).values * 1e6
+    assert not np.allclose(other, mb, rtol=1e-3, equal_nan=True)  # the other run differs: the list picked this one
+    assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]

@@ -307,14 +307,13 @@ def _trial_signal(d, key, scale):
 TRIAL_ANGLE_NOTE = "F_D, M_D unwrapped per contact, masked where undefined as in the figures"
 
 
-def write_trial_view(trial_path, results, out):
-    """Writes the viewer page of a `vibrissa trial` run: the trial file and its output directory (frames.h5).
+def _trial_scene(trial, results):
+    """One analysed trial as the page draws it: `trial` a Trial, `results` its output directory (frames.h5).
     The whisker of each frame in contact-point mode, solved again through the contact point of frames.h5
     (`solve_point`, the run's filtered angles, the tracked base point) and the rest shape placed by the pose
-    outside contact; signals of contact-point mode from frames.h5."""
+    outside contact; signals of contact-point mode from frames.h5 (F_D, M_D as the figures draw them)."""
     import h5py
-    from . import Pose, WhiskerProperties, Whisker, read_trial, solve_point
-    trial = read_trial(str(trial_path))
+    from . import Pose, WhiskerProperties, Whisker, solve_point
     with h5py.File(pathlib.Path(results) / "frames.h5", "r") as f:
         d = {k: f[k][()] for k in ["time", "theta", "phi", "zeta", "contact", "cp_status", "cp_contact_x",
                                    "cp_contact_y", "cp_contact_z", "period", "period_edge"] +
@@ -322,7 +321,7 @@ def write_trial_view(trial_path, results, out):
     keep = np.isin(trial.time, d["time"])
     base = np.asarray(trial.base_W)[keep]
     if len(base) != len(d["time"]):
-        raise ValueError(f"{results}: frames.h5 does not belong to {trial_path} (its times differ)")
+        raise ValueError(f"{results}: frames.h5 does not belong to the trial (its times differ)")
     m = trial.material
     whisker = Whisker.from_points(trial.rest_shape, properties=WhiskerProperties(
         links=int(m["links"]), base_radius=m["base_radius"], taper_ratio=m["taper_ratio"],
@@ -341,31 +340,50 @@ def write_trial_view(trial_path, results, out):
             if sol.converged:
                 line, state[0, i] = np.asarray(sol.shape_W), 1
         shapes[i, 0] = _resample(line[None])[0]
-    shapes_mm, contact_mm = shapes * 1e3, contact_W * 1e3
     edges = np.asarray(trial.edges)
     seg = np.stack([np.stack([e[:3] - EDGE_HALF_LENGTH_M * e[3:] / np.linalg.norm(e[3:]),
                               e[:3] + EDGE_HALF_LENGTH_M * e[3:] / np.linalg.norm(e[3:])]) for e in edges]) * 1e3
-    lo, hi = _view_box(np.concatenate([shapes_mm.reshape(-1, 3), seg.reshape(-1, 3)]))
-    q, offset, step = _quantise(shapes_mm, lo, hi)
+    sig = np.stack([_trial_signal(d, k, scale)[None] for k, _, _, scale in TRIAL_SIGNALS])
+    return {"time": d["time"], "shapes_mm": shapes * 1e3, "state": state, "contact_mm": contact_W * 1e3,
+            "edges_mm": seg, "signals": sig, "initial_frame": int(np.argmax(np.nan_to_num(d["cp_MB"])))}
+
+
+def _trial_page(scenes, labels, group_dims, title, out):
+    """A page of analysed trials (_trial_scene), one group each."""
+    n = len(scenes[0]["time"])
+    lo, hi = _view_box(np.concatenate([np.concatenate([s["shapes_mm"].reshape(-1, 3), s["edges_mm"].reshape(-1, 3)])
+                                       for s in scenes]))
     blobs = _Blobs()
     signals = [{"key": k, "label": label, "unit": unit} for k, label, unit, _ in TRIAL_SIGNALS]
     colour_by = [{"label": "|M_B|", "kind": "signal", "signal": 0, "abs": True},
                  {"label": "F_T", "kind": "signal", "signal": 1, "abs": True},
                  {"label": "contact state", "kind": "state"}]
-    meta = _base_meta("trial", f"vibrissa trial: {pathlib.Path(trial_path).name}, {n} frames, contact-point mode",
-                      d["time"], ["whisker"], signals, colour_by, "", "")
-    sig = np.stack([_trial_signal(d, k, scale)[None] for k, _, _, scale in TRIAL_SIGNALS])
-    meta["title"] += f" ({TRIAL_ANGLE_NOTE})"
-    meta["groups"] = [{"label": "trial", "shapes": blobs.add(q, delta=True), "state": blobs.add(state),
-                       "signals": blobs.add(sig.astype(np.float32)),
-                       "contact": blobs.add(contact_mm[None].astype(np.float32)),
-                       "edges": blobs.add(np.broadcast_to(seg, (n,) + seg.shape).astype(np.float32)),
-                       "ranges": _ranges(sig)}]
-    meta["quant"] = {"offset": offset.tolist(), "step": step.tolist()}
-    meta["edges"] = len(edges)
-    meta["initial_frame"] = int(np.argmax(np.nan_to_num(d["cp_MB"])))
+    meta = _base_meta("trial", f"{title}, contact-point mode ({TRIAL_ANGLE_NOTE})", scenes[0]["time"], ["whisker"],
+                      signals, colour_by, group_dims[0]["label"] if group_dims else "", "")
+    for scene, label in zip(scenes, labels):
+        q, offset, step = _quantise(scene["shapes_mm"], lo, hi)
+        meta["groups"].append({
+            "label": label, "shapes": blobs.add(q, delta=True), "state": blobs.add(scene["state"]),
+            "signals": blobs.add(scene["signals"].astype(np.float32)),
+            "contact": blobs.add(scene["contact_mm"][None].astype(np.float32)),
+            "edges": blobs.add(np.broadcast_to(scene["edges_mm"], (n,) + scene["edges_mm"].shape).astype(np.float32)),
+            "ranges": _ranges(scene["signals"])})
+        meta["quant"] = {"offset": offset.tolist(), "step": step.tolist()}
+    if group_dims:
+        meta["group_dims"] = group_dims
+    meta["edges"] = int(scenes[0]["edges_mm"].shape[0])
+    meta["initial_frame"] = scenes[0]["initial_frame"]
     _set_view(meta, lo, hi, direction=[0.2, -0.5, 0.85])
     return _write_page(meta, blobs, out)
+
+
+def write_trial_view(trial_path, results, out):
+    """Writes the viewer page of a `vibrissa trial` run: the trial file and its output directory (frames.h5);
+    see _trial_scene."""
+    from . import read_trial
+    scene = _trial_scene(read_trial(str(trial_path)), results)
+    title = f"vibrissa trial: {pathlib.Path(trial_path).name}, {len(scene['time'])} frames"
+    return _trial_page([scene], ["trial"], None, title, out)
 
 
 # ---- solve ------------------------------------------------------------------------------------------------
@@ -612,7 +630,9 @@ def write_sweep_view(source, out, runs=None):
     configuration (sweep.json) as `vibrissa view` does for an array; `runs` (flat run indices) limits the
     runs included (default all, at most MAX_SWEEP_ARRAY_GROUPS runs x pitches). Solve sweeps: the slider
     steps through the last parameter's values (a list of runs: through the runs), the other parameters are
-    lists; each run solved again for its shape (a solve result keeps none). Trial sweeps are not shown."""
+    lists; each run solved again for its shape (a solve result keeps none). Trial sweeps: the picked run's
+    trial (synthesised or read again) analysed again, drawn as `vibrissa view TRIAL` draws it (at most
+    MAX_SWEEP_ARRAY_GROUPS runs; `runs` picks fewer)."""
     from .sweeps import _plan
     from .sweep_runs import configured
     ds, spec, _ = _sweep_source(source)
@@ -620,11 +640,13 @@ def write_sweep_view(source, out, runs=None):
     _, run_list = _plan(spec.get("grid"), spec.get("runs"))
     if kind == "solve":
         return _write_solve_sweep(ds, spec, run_list, out)
-    if kind != "array":
-        raise ValueError(f"a sweep of {kind} runs cannot be shown yet (array and solve sweeps can: docs/viewer.md)")
+    if kind not in ("array", "trial"):
+        raise ValueError(f"a sweep of {kind!r} runs cannot be shown (array, trial and solve sweeps can)")
     picked = list(range(len(run_list))) if runs is None else sorted(set(int(r) for r in runs))
     if any(not 0 <= r < len(run_list) for r in picked):
         raise ValueError(f"runs: indices must be in [0, {len(run_list) - 1}], got {runs}")
+    if kind == "trial":
+        return _write_trial_sweep(spec, run_list, picked, runs is not None, out)
     n_pitch = ds.sizes.get("pitch", 1)
     if len(picked) * n_pitch > MAX_SWEEP_ARRAY_GROUPS:
         raise ValueError(f"{len(picked)} runs x {n_pitch} head pitches is more than the {MAX_SWEEP_ARRAY_GROUPS} "
@@ -691,6 +713,31 @@ def write_sweep_view(source, out, runs=None):
     meta["title"] = (f"vibrissa sweep of {len(run_list)} array runs ({len(picked)} shown): {len(names)} whiskers × "
                      f"{len(times)} frames")
     return _write_page(meta, blobs, out)
+
+
+def _write_trial_sweep(spec, run_list, picked, subset, out):
+    import tempfile
+    from .pipeline import analyze_trial, read_trial, synthesize_trial
+    from .sweep_runs import configured
+    if len(picked) > MAX_SWEEP_ARRAY_GROUPS:
+        raise ValueError(f"{len(picked)} trial runs are more than the {MAX_SWEEP_ARRAY_GROUPS} one page holds: pick "
+                         "runs with --runs (flat indices, the first parameter slowest)")
+    dims = _sweep_dims(spec, run_list)
+    if subset:
+        dims = [{"label": "run", "values": [", ".join(f"{p}={_label(v)}" for p, v in run_list[r].items()) or "base"
+                                            for r in picked]}]
+    scenes = []
+    for r in picked:  # each run as sweep_runs._trial_run makes it, analysed again (deterministic: the same numbers)
+        config = configured(spec["base"], run_list[r])
+        trial = read_trial(str(config["trial"])) if config.get("trial") is not None else \
+            synthesize_trial(**config.get("synth", {}))
+        with tempfile.TemporaryDirectory(prefix="vibrissa-view-") as tmp:
+            analyze_trial(trial, **config.get("analysis", {})).write(tmp)
+            scenes.append(_trial_scene(trial, tmp))
+    if any(len(s["time"]) != len(scenes[0]["time"]) for s in scenes):
+        raise ValueError("the sweep's trials differ in frame count: show them one by one (--runs)")
+    title = f"vibrissa sweep of {len(run_list)} trials ({len(picked)} shown), {len(scenes[0]['time'])} frames"
+    return _trial_page(scenes, [f"run {r}" for r in picked], dims, title, out)
 
 
 def _array_result(config, pitch_rad, frames):
