@@ -13,7 +13,7 @@ and ``config.json``): every whisker at every frame and head pitch. ``array.h5`` 
 for ``output.render_count`` frames of one pitch, so the shapes are simulated again from the configuration,
 one pitch at a time with every frame rendered (the same deterministic simulation); the signals are those of
 the result. A ``vibrissa solve`` result (with its case when known: write_solve_view) and a sweep's folder
-(array and solve sweeps: write_sweep_view) are shown too.
+(array, trial and solve sweeps: write_sweep_view) are shown too.
 """
 
 import argparse
