@@ -98,22 +98,45 @@ def assert_same_results(expected, found):
 
 
 def test_a_worker_killed_mid_run_loses_nothing_and_results_match_serial(local_cluster, serial, tmp_path):
+    """A worker is killed (SIGKILL) while it is inside a chunk: the workers are held at the start of their
+    chunks (holding.py) until one is killed, so the kill cannot come too late under load (all chunks already
+    done) or too early (a task assigned but not started)."""
+    import cloudpickle
+    import holding
     client, pids = local_cluster
     workers = pids()
+    flags = tmp_path / "flags"
+    flags.mkdir()
+    (flags / "hold").touch()
+    cloudpickle.register_pickle_by_value(holding)
+    try:
+        assert sorted(client.run(holding.hold_chunks, str(flags)).values()) == sorted(workers.values())
+    finally:
+        cloudpickle.unregister_pickle_by_value(holding)
     killed = {}
 
-    def kill_a_busy_worker(done, total):
-        if done == 0 or killed:
-            return
-        busy = [address for address, keys in client.processing().items() if keys and address in workers]
-        if busy:
-            killed["pid"], killed["keys"] = workers[busy[0]], client.processing()[busy[0]]
-            os.kill(killed["pid"], signal.SIGKILL)
+    def kill_a_worker_in_a_chunk():
+        try:
+            stop = time.monotonic() + 60
+            while time.monotonic() < stop:  # until a worker has entered a chunk (it is held there)
+                started = [int(f.name.split("-")[1]) for f in flags.glob("started-*")]
+                running = {address: keys for address, keys in client.processing().items() if keys}
+                inside = [a for a, pid in workers.items() if pid in started and a in running]
+                if inside:
+                    killed["pid"], killed["keys"] = workers[inside[0]], running[inside[0]]
+                    os.kill(killed["pid"], signal.SIGKILL)
+                    break
+                time.sleep(0.02)
+        finally:
+            (flags / "hold").unlink()  # let the other worker go on
 
+    killer = threading.Thread(target=kill_a_worker_in_a_chunk)
+    killer.start()
     with deadline(120, lambda: [os.kill(p, signal.SIGKILL) for p in pids().values()]):
-        found = vibrissa.sweep("array", BASE, grid=GRID, client=client, chunk_size=1, out=tmp_path / "dask",
-                               progress=kill_a_busy_worker).load()
-    assert killed, "no worker was busy after the first chunk"
+        found = vibrissa.sweep("array", BASE, grid=GRID, client=client, chunk_size=1,
+                               out=tmp_path / "dask").load()
+    killer.join()
+    assert killed, "no worker entered a chunk within 60 s"
     assert not psutil.pid_exists(killed["pid"]) or psutil.Process(killed["pid"]).status() == psutil.STATUS_ZOMBIE
     # Its chunk ran again elsewhere: every run is there once, and the results are the serial ones bit for bit.
     index = json.loads((tmp_path / "dask" / "index.json").read_text())["chunks"]

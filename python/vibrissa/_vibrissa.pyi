@@ -1,6 +1,8 @@
 """Type stubs of the compiled core (python/src/*.cpp). SI units: m, N, N·m, Pa, rad."""
 
 import enum
+import os
+import pathlib
 from typing import Any, Callable, ClassVar, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -235,6 +237,7 @@ class Solution:
     def moment(self) -> Vec3: ...  # world [N·m]
     @property
     def whisker_frame(self) -> WhiskerFrameSignals: ...
+    def view(self, path: str | os.PathLike[str] = "solve_view.html", case: Any = None) -> pathlib.Path: ...  # docs/viewer.md (vibrissa/__init__.py)
     @property
     def normal_force(self) -> Optional[float]: ...
     @property
@@ -414,6 +417,7 @@ class Trial:
 def read_trial(path: str) -> Trial: ...
 def default_array_config_json() -> str: ...
 def _check_array_config(text: str) -> None: ...
+def _resolve_input_paths(text: str, base_dir: str) -> str: ...  # files named relative to base_dir made absolute
 
 # A labelled description (python/src/labelled.hpp): {"variables": [(path, dims, attrs, values)],
 # "attributes": [(group, name, value)]}, what vibrissa.labelled.to_dataset turns into an xarray Dataset.

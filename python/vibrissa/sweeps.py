@@ -47,11 +47,12 @@ def _base_config(kind, base, relative_to):
     if not isinstance(base, dict):
         raise TypeError(f"base must be a dict, a path to a JSON file or None, got {type(base).__name__}")
     base = json.loads(json.dumps(base, default=_json_default))  # a plain copy
-    # Files named in the configuration are found relative to the configuration's folder, as the CLI does.
-    if kind == "array":
-        source = base.get("morphology", {}).get("source", "")
-        if source.endswith((".csv", ".json")):
-            base["morphology"]["source"] = str(pathlib.Path(relative_to, source).resolve())
+    # Files named in the configuration are found relative to the configuration's folder (the current one for a
+    # dict), as the CLI's readers find them: the same C++ rule (io::resolve_input_paths: a morphology table,
+    # meshes), so the runs find them from any worker's directory.
+    if kind in ("array", "solve"):
+        from . import _vibrissa
+        base = json.loads(_vibrissa._resolve_input_paths(json.dumps(base), str(pathlib.Path(relative_to).resolve())))
     if kind == "trial" and isinstance(base.get("trial"), str):
         base["trial"] = str(pathlib.Path(relative_to, base["trial"]).resolve())
     return base
@@ -179,6 +180,8 @@ def _sweep(kind, base, parameters, runs, out, variables, scheduler, workers, chu
                     progress(done_runs, len(runs))
             store.assemble(parameters, runs, {"format": "vibrissa-sweep", "kind": kind, "vibrissa": build_id(),
                                               "sweep": json.dumps(dict(spec, chunk_size=chunk_size))})
+    from .viewer import _register_accessor
+    _register_accessor()  # result.vibrissa.view(): the viewer of the sweep (docs/viewer.md)
     return xr.open_dataset(store.result_path, engine="h5netcdf")
 
 
