@@ -167,7 +167,13 @@ def _object_meshes(objects, blobs):
         else:
             from scipy.spatial import ConvexHull
             v = object_outline.surface_points(description, vertices, n=32)
-            tri = ConvexHull(v).simplices
+            hull = ConvexHull(v)
+            tri = hull.simplices.copy()
+            # Qhull does not orient its triangles: turn each to face outward (its facet's normal), so that the
+            # page's outline (edges between faces at an angle) does not draw the seams of coplanar triangles.
+            n = np.cross(v[tri[:, 1]] - v[tri[:, 0]], v[tri[:, 2]] - v[tri[:, 0]])
+            flip = np.einsum("ij,ij->i", n, hull.equations[:, :3]) < 0
+            tri[flip] = tri[flip][:, ::-1]
         out.append({"type": kind, "vertices": blobs.add((np.asarray(v) * 1e3).astype(np.float32)),
                     "triangles": blobs.add(np.asarray(tri).astype(np.uint32))})
     return out
@@ -860,7 +866,7 @@ def main(argv=None):
                                           "<trial name>_results next to the trial)")
     parser.add_argument("--case", help="solve: the case file solved (default: case.json beside the result); "
                                        "adds the rest shape and the edge")
-    parser.add_argument("--runs", help="array sweep: the runs shown, flat indices (first parameter slowest), "
+    parser.add_argument("--runs", help="array or trial sweep: the runs shown, flat indices (first parameter slowest), "
                                        "e.g. 0,3,5 (default all, at most %d runs x pitches)" % MAX_SWEEP_ARRAY_GROUPS)
     args = parser.parse_args(argv)
     try:
