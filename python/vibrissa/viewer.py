@@ -707,11 +707,26 @@ def write_sweep_view(source, out, runs=None):
                        {"label": "contact state", "kind": "state"}], dims[0]["label"], "whisker")
     meta["groups"], meta["group_dims"], meta["quant"] = groups, dims, meta_quant
     meta["edges"] = int(sims[0][3].datasets["render/edges"].shape[1])
-    objects = _result_objects(sims[0][3])
-    if objects:
-        meta["objects"] = _object_meshes(objects, blobs)
-        for group, sim in zip(groups, sims):
-            group["object_poses"] = blobs.add(_poses_mm(sim[3].datasets["render/object_poses"]))
+    # The objects of every run (a sweep may change them: a radius, a mesh): each distinct one drawn once, placed
+    # by its pose in the groups of the runs that have it and collapsed (a zero matrix) in the others.
+    distinct, placed = [], []
+    for sim in sims:
+        where = []
+        for description, vertices in _result_objects(sim[3]):
+            key = json.dumps(description, sort_keys=True) + (str(np.asarray(vertices).tobytes()) if vertices is not None else "")
+            keys = [json.dumps(d, sort_keys=True) + (str(np.asarray(v).tobytes()) if v is not None else "") for d, v in distinct]
+            if key not in keys:
+                distinct.append((description, vertices))
+                keys.append(key)
+            where.append(keys.index(key))
+        placed.append(where)
+    if distinct:
+        meta["objects"] = _object_meshes(distinct, blobs)
+        for group, sim, where in zip(groups, sims, placed):
+            own = _poses_mm(sim[3].datasets["render/object_poses"])  # [frame][own object][12]
+            poses = np.zeros((own.shape[0], len(distinct), 12), np.float32)
+            poses[:, where] = own
+            group["object_poses"] = blobs.add(poses)
     state0 = np.asarray(sims[0][3].datasets["state"][0])
     meta["initial_frame"] = int(np.argmax((state0 == 1).sum(axis=0)))
     meta["initial_whisker"] = int(np.argmax(np.nan_to_num(np.asarray(sims[0][3].datasets["MB"][0])).max(axis=1)))
