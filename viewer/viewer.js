@@ -291,7 +291,7 @@
       g.fillText(hi.toPrecision(3), m.l - 3, m.t + 9); g.fillText(lo.toPrecision(3), m.l - 3, m.t + ph);
       g.textAlign = "left";
       g.fillText(axisText(0, axis.digits === undefined ? 0 : axis.digits), m.l, H - 4);
-      g.textAlign = "center"; g.fillText(axis.label, m.l + pw / 2, H - 4);
+      if (meta.frame_axis) { g.textAlign = "center"; g.fillText(axis.label, m.l + pw / 2, H - 4); }  // not time: name it
       g.textAlign = "right"; g.fillText(axisText(nT - 1, axis.digits === undefined ? 0 : axis.digits), m.l + pw, H - 4);
       g.textAlign = "left";
       g.strokeStyle = "#0072B2"; g.lineWidth = 1.5; g.beginPath();

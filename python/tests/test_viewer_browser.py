@@ -402,3 +402,25 @@ def test_trial_sweep_page_shows_each_runs_trial(browser, tmp_path):
     other = result.cp_MB.isel({"analysis.mu": 0, "synth.seed": 0}).values * 1e6
     assert not np.allclose(other, mb, rtol=1e-3, equal_nan=True)  # the other run differs: the list picked this one
     assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def test_sweep_page_draws_each_runs_own_object(tmp_path):
+    import re
+    base = vibrissa.default_array_config()
+    base["morphology"]["whiskers"] = ["C1", "C2"]
+    base["time"]["frames"] = 6
+    base["objects"] = [{"type": "sphere", "frame": "head", "centre_mm": [20, -8, -3], "radius_mm": 3}]
+    result = vibrissa.sweep("array", base, scheduler="serial", grid={"objects.0.radius_mm": [2.0, 4.0]},
+                            variables=["state"])
+    text = result.vibrissa.view(tmp_path / "p.html").read_text()
+    meta = json.loads(re.search(r'id="vibrissa-meta">(.*?)</script>', text, re.S).group(1))
+    blobs = {m.group(1): m.group(0) for m in re.finditer(r'<script type="application/octet-stream" id="(b\d+)".*?</script>', text, re.S)}
+    assert len(meta["objects"]) == 2  # one sphere per radius
+    radii = []
+    for o in meta["objects"]:
+        v = decode_blob(blobs[o["vertices"]]).reshape(-1, 3)
+        radii.append(np.linalg.norm(v - v.mean(axis=0), axis=1).max())
+    assert radii == pytest.approx([2.0, 4.0], rel=0.02)  # mm
+    for g, group in enumerate(meta["groups"]):  # each run places its own sphere, the other is collapsed
+        poses = decode_blob(blobs[group["object_poses"]]).reshape(6, 2, 12)
+        assert np.abs(poses[:, g]).max() > 0 and np.abs(poses[:, 1 - g]).max() == 0

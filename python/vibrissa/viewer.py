@@ -167,7 +167,13 @@ def _object_meshes(objects, blobs):
         else:
             from scipy.spatial import ConvexHull
             v = object_outline.surface_points(description, vertices, n=32)
-            tri = ConvexHull(v).simplices
+            hull = ConvexHull(v)
+            tri = hull.simplices.copy()
+            # Qhull does not orient its triangles: turn each to face outward (its facet's normal), so that the
+            # page's outline (edges between faces at an angle) does not draw the seams of coplanar triangles.
+            n = np.cross(v[tri[:, 1]] - v[tri[:, 0]], v[tri[:, 2]] - v[tri[:, 0]])
+            flip = np.einsum("ij,ij->i", n, hull.equations[:, :3]) < 0
+            tri[flip] = tri[flip][:, ::-1]
         out.append({"type": kind, "vertices": blobs.add((np.asarray(v) * 1e3).astype(np.float32)),
                     "triangles": blobs.add(np.asarray(tri).astype(np.uint32))})
     return out
@@ -701,11 +707,26 @@ def write_sweep_view(source, out, runs=None):
                        {"label": "contact state", "kind": "state"}], dims[0]["label"], "whisker")
     meta["groups"], meta["group_dims"], meta["quant"] = groups, dims, meta_quant
     meta["edges"] = int(sims[0][3].datasets["render/edges"].shape[1])
-    objects = _result_objects(sims[0][3])
-    if objects:
-        meta["objects"] = _object_meshes(objects, blobs)
-        for group, sim in zip(groups, sims):
-            group["object_poses"] = blobs.add(_poses_mm(sim[3].datasets["render/object_poses"]))
+    # The objects of every run (a sweep may change them: a radius, a mesh): each distinct one drawn once, placed
+    # by its pose in the groups of the runs that have it and collapsed (a zero matrix) in the others.
+    distinct, placed = [], []
+    for sim in sims:
+        where = []
+        for description, vertices in _result_objects(sim[3]):
+            key = json.dumps(description, sort_keys=True) + (str(np.asarray(vertices).tobytes()) if vertices is not None else "")
+            keys = [json.dumps(d, sort_keys=True) + (str(np.asarray(v).tobytes()) if v is not None else "") for d, v in distinct]
+            if key not in keys:
+                distinct.append((description, vertices))
+                keys.append(key)
+            where.append(keys.index(key))
+        placed.append(where)
+    if distinct:
+        meta["objects"] = _object_meshes(distinct, blobs)
+        for group, sim, where in zip(groups, sims, placed):
+            own = _poses_mm(sim[3].datasets["render/object_poses"])  # [frame][own object][12]
+            poses = np.zeros((own.shape[0], len(distinct), 12), np.float32)
+            poses[:, where] = own
+            group["object_poses"] = blobs.add(poses)
     state0 = np.asarray(sims[0][3].datasets["state"][0])
     meta["initial_frame"] = int(np.argmax((state0 == 1).sum(axis=0)))
     meta["initial_whisker"] = int(np.argmax(np.nan_to_num(np.asarray(sims[0][3].datasets["MB"][0])).max(axis=1)))
@@ -860,7 +881,7 @@ def main(argv=None):
                                           "<trial name>_results next to the trial)")
     parser.add_argument("--case", help="solve: the case file solved (default: case.json beside the result); "
                                        "adds the rest shape and the edge")
-    parser.add_argument("--runs", help="array sweep: the runs shown, flat indices (first parameter slowest), "
+    parser.add_argument("--runs", help="array or trial sweep: the runs shown, flat indices (first parameter slowest), "
                                        "e.g. 0,3,5 (default all, at most %d runs x pitches)" % MAX_SWEEP_ARRAY_GROUPS)
     args = parser.parse_args(argv)
     try:
