@@ -257,6 +257,20 @@ def test_trial_and_solve_sweeps_give_the_numbers_of_the_direct_calls(tmp_path):
     assert trials["synth.seed"].values.tolist()[1] == 5
 
 
+def test_an_array_base_that_omits_keys_takes_the_defaults_values():
+    """As in `vibrissa array`: a partial base (here without objects, as in docs/sweeps.md's JSON example) lies over
+    the built-in configuration, so a swept path inside the default's peg exists."""
+    partial = {"morphology": {"whiskers": ["C2"]}, "time": {"frames": 20}}
+    found = vibrissa.sweep("array", partial, grid={"objects.0.point_mm.0": [16.0, 24.0]}, variables=["FT"],
+                           scheduler="serial")
+    default = vibrissa.default_array_config()
+    assert default["objects"][0]["point_mm"][0] not in (16.0, 24.0)  # the sweep, not the default, placed the peg
+    config = sweep_runs.configured(dict(default, morphology={**default["morphology"], "whiskers": ["C2"]},
+                                        time={**default["time"], "frames": 20}), {"objects.0.point_mm.0": 24.0})
+    np.testing.assert_array_equal(found.FT.sel({"objects.0.point_mm.0": 24.0}).values,
+                                  vibrissa.simulate_array(config).FT)
+
+
 def test_bad_sweeps_are_refused_before_anything_runs(tmp_path):
     with pytest.raises(ValueError, match=r"sweep run 1 \(time.frames=1\): time.frames must be an integer in \[2, "):
         vibrissa.sweep("array", BASE, grid={"time.frames": [100, 1]}, scheduler="serial")

@@ -47,6 +47,11 @@ def _base_config(kind, base, relative_to):
     if not isinstance(base, dict):
         raise TypeError(f"base must be a dict, a path to a JSON file or None, got {type(base).__name__}")
     base = json.loads(json.dumps(base, default=_json_default))  # a plain copy
+    if kind == "array":
+        # Keys the base omits take the built-in default's values, as in `vibrissa array` (docs/array.md), so a
+        # swept path such as objects.0.point_mm.0 finds the default's peg.
+        from .pipeline import default_array_config
+        base = _over(default_array_config(), base)
     # Files named in the configuration are found relative to the configuration's folder (the current one for a
     # dict), as the CLI's readers find them: the same C++ rule (io::resolve_input_paths: a morphology table,
     # meshes), so the runs find them from any worker's directory.
@@ -56,6 +61,13 @@ def _base_config(kind, base, relative_to):
     if kind == "trial" and isinstance(base.get("trial"), str):
         base["trial"] = str(pathlib.Path(relative_to, base["trial"]).resolve())
     return base
+
+
+def _over(default, given):
+    """`given` laid over `default`: objects merged key by key, anything else (lists too) taken from `given`."""
+    if not isinstance(default, dict) or not isinstance(given, dict):
+        return given
+    return {**default, **{key: _over(default.get(key), value) for key, value in given.items()}}
 
 
 def _json_default(value):
