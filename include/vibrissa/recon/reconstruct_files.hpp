@@ -1,7 +1,7 @@
 #pragma once
 // `vibrissa reconstruct` as one library call (docs/reconstruction.md), shared by the CLI and the Python
-// binding (vibrissa.reconstruct): read the calibration and both views' tracks, reconstruct every frame, build
-// the trial, and describe the result as the report JSON text.
+// binding (vibrissa.reconstruct): read the calibration and every named view's tracks, reconstruct every frame,
+// build the trial, and describe the result as the report JSON text.
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,13 +13,19 @@
 
 namespace vibrissa::recon {
 
+/// One camera view: its name (in the report and messages), its track file and the camera's name in the
+/// calibration (empty: the view's name).
+struct ViewFile {
+  std::string name, path, camera;
+  TrackSelection selection;
+  [[nodiscard]] const std::string& camera_name() const { return camera.empty() ? name : camera; }
+};
+
 struct ReconstructFiles {
-  std::string top, front;     ///< track files (read_tracks formats)
+  std::vector<ViewFile> views;  ///< >= 2, distinct names (the CLI's --view NAME=FILE, --top, --front)
   std::string calibration;    ///< a calibration (read_calibration: vibrissa JSON, anipose TOML, NAME=OpenCV file)
   std::vector<std::string> more_calibrations;  ///< further ones (e.g. one OpenCV file per camera), merged
   std::string calibration_unit;  ///< length unit of anipose / OpenCV files (m, mm, um)
-  std::string top_camera = "top", front_camera = "front";  ///< names in the calibration
-  TrackSelection top_selection, front_selection;
 };
 
 struct ReconstructedTrial {
@@ -41,7 +47,7 @@ ReconstructedTrial reconstruct_files(const ReconstructFiles& files, const Recons
 /// length) and per contact period (undeflected shape and where it comes from).
 std::string report_json(const Reconstruction& reconstruction, int indent = 1);
 
-/// One line: frames, tracked in both views, reconstructed, in contact, periods, and why the others were not.
+/// One line: frames, tracked in two or more views, reconstructed, in contact, periods, and why the others were not.
 std::string summary_line(const ReconstructedTrial& result);
 
 }  // namespace vibrissa::recon
