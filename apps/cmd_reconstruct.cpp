@@ -1,6 +1,7 @@
 // `vibrissa reconstruct --view top=T --view front=F [--view side=S ...] --calibration C.json -o trial.h5` and
 // `vibrissa calibrate`: from N >= 2 tracked, named views to a trial that `vibrissa trial` reads (docs/reconstruction.md).
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -25,7 +26,8 @@ namespace {
 
 struct ReconstructArgs {
   std::string top, front, out, report, calibration_unit;
-  std::vector<std::string> calibrations, views, measurements, frame_offsets;
+  std::vector<std::string> calibrations, views, measurements, frame_offsets, whiskers;
+  bool all_whiskers = false;
   std::string top_camera = "top", front_camera = "front";
   recon::TrackSelection top_sel, front_sel;
   std::string bodyparts;
@@ -73,6 +75,9 @@ void register_reconstruct(CLI::App& app) {
   cmd->add_option("--front-measurements", a->front_sel.measurements, "Janelia .measurements of the front .whiskers");
   cmd->add_option("--whisker-id", a->top_sel.identity, "Janelia whisker identity (measurements 'state')")->capture_default_str();
   cmd->add_option("--bodyparts", a->bodyparts, "DeepLabCut keypoints base to tip, comma-separated (default: all)");
+  cmd->add_option("--whisker", a->whiskers, "NAME=c2_0,c2_1,... (DeepLabCut keypoints base to tip) or NAME=LABEL (Janelia "
+                  "label): one trial per whisker, in NAME/ beside -o and --report; repeat per whisker");
+  cmd->add_flag("--all-whiskers", a->all_whiskers, "every labelled whisker of the first view's Janelia .measurements");
   cmd->add_option("--individual", a->top_sel.individual, "DeepLabCut individual (multi-animal files)");
   cmd->add_option("--peg-mm", a->pegs_mm, "vertical peg (along world z) through X Y Z [mm]; repeat for more")
       ->type_size(3)->expected(1, CLI::detail::expected_max_vector_size)->type_name("X Y Z")->allow_extra_args(false);
@@ -146,23 +151,80 @@ void register_reconstruct(CLI::App& app) {
     std::size_t shown = 0;
     RunControl control;
     control.progress = [&](std::size_t done, std::size_t all) {
+      if (progress && done < shown) {  // the next whisker's frames
+        progress->finish();
+        progress.reset();
+        shown = 0;
+      }
       if (!progress) progress.emplace("reconstructing frames", all);
       progress->advance(done - shown);
       shown = done;
     };
-    const recon::ReconstructedTrial result = recon::reconstruct_files(files, o, a->out, control);
-    if (progress) progress->finish();
-    io::write_trial(result.trial, a->out);
-    std::cout << "vibrissa reconstruct: " << recon::summary_line(result) << " -> " << a->out << "\n";
-    const std::vector<std::string> warnings = trial::trial_warnings(result.trial);  // a peg out of reach, ...
-    for (const std::string& w : warnings) std::cerr << "vibrissa reconstruct: warning: " << w << "\n";
-    if (!a->report.empty()) {
-      nlohmann::json report = nlohmann::json::parse(recon::report_json(result.reconstruction));
-      nlohmann::json& listed = report["warnings"];  // as vibrissa.reconstruct's report
-      if (listed.is_null()) listed = nlohmann::json::array();
-      for (const std::string& w : warnings) listed.push_back(w);
-      io::write_json_file(a->report, report);
+    // One trial (and report) written, its summary printed; warnings to stderr and into the report.
+    auto write = [&](const recon::ReconstructedTrial& result, const std::string& out, const std::string& report_path,
+                     const std::string& label) {
+      io::write_trial(result.trial, out);
+      std::cout << "vibrissa reconstruct: " << label << recon::summary_line(result) << " -> " << out << "\n";
+      const std::vector<std::string> warnings = trial::trial_warnings(result.trial);  // a peg out of reach, ...
+      for (const std::string& w : warnings) std::cerr << "vibrissa reconstruct: " << label << "warning: " << w << "\n";
+      if (!report_path.empty()) {
+        nlohmann::json report = nlohmann::json::parse(recon::report_json(result.reconstruction));
+        nlohmann::json& listed = report["warnings"];  // as vibrissa.reconstruct's report
+        if (listed.is_null()) listed = nlohmann::json::array();
+        for (const std::string& w : warnings) listed.push_back(w);
+        io::write_json_file(report_path, report);
+      }
+    };
+    std::vector<recon::WhiskerSelection> whiskers;
+    for (const std::string& spec : a->whiskers) whiskers.push_back(recon::parse_whisker(spec));
+    if (a->all_whiskers) {
+      if (!whiskers.empty()) throw std::invalid_argument("--all-whiskers and --whisker: give one");
+      const std::string& m = files.views.front().selection.measurements;
+      if (m.empty())
+        throw std::invalid_argument("--all-whiskers needs the Janelia .measurements of view '" + files.views.front().name +
+                                    "' (--measurements " + files.views.front().name + "=FILE)");
+      whiskers = recon::janelia_whiskers(m);
     }
+    if (whiskers.empty()) {
+      const recon::ReconstructedTrial result = recon::reconstruct_files(files, o, a->out, control);
+      if (progress) progress->finish();
+      write(result, a->out, a->report, "");
+      return;
+    }
+    // Several whiskers: one trial per whisker in a folder named after it beside -o (and --report).
+    namespace fs = std::filesystem;
+    auto per_whisker = [](const std::string& path, const std::string& name) {
+      const fs::path p(path);
+      fs::create_directories(p.parent_path() / name);
+      return (p.parent_path() / name / p.filename()).string();
+    };
+    const std::vector<recon::WhiskerTrial> results = recon::reconstruct_whiskers(files, whiskers, o, a->out, control);
+    if (progress) progress->finish();
+    std::string failed;
+    std::cout << "whisker\tframes\treconstructed\tin contact\tcontact periods\treprojection median [px]\ttrial\n";
+    for (const recon::WhiskerTrial& w : results) {
+      if (!w.result) {
+        failed += "\n  - whisker '" + w.name + "': " + w.error;
+        std::cout << w.name << "\tfailed\t\t\t\t\t\n";
+        continue;
+      }
+      const std::string out = per_whisker(a->out, w.name);
+      write(*w.result, out, a->report.empty() ? "" : per_whisker(a->report, w.name), "whisker " + w.name + ": ");
+      const auto& rec = w.result->reconstruction;
+      std::vector<double> rep;
+      std::size_t contact = 0;
+      for (const auto& f : rec.frames)
+        if (f.ok()) rep.push_back(f.reprojection_px);
+      for (auto c : w.result->trial.contact) contact += c;
+      std::sort(rep.begin(), rep.end());
+      std::cout << w.name << "\t" << rec.frames.size() << "\t" << rep.size() << "\t" << contact << "\t"
+                << rec.undeflected.size() << "\t" << (rep.empty() ? std::string("n/a") : std::to_string(rep[rep.size() / 2]))
+                << "\t" << out << "\n";
+    }
+    if (!failed.empty())
+      throw std::runtime_error("reconstruct: " + std::to_string(std::count_if(results.begin(), results.end(),
+                                                                              [](const auto& w) { return !w.result; })) +
+                               " of " + std::to_string(results.size()) + " whiskers failed (the others are written):" + failed);
   });
 }
 

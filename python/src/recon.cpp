@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <tuple>
 #include <stdexcept>
 
 #include <pybind11/stl.h>
@@ -50,8 +51,9 @@ void bind_recon(py::module_& m) {
          int whisker_id, double min_likelihood, double max_reprojection_px, double contact_threshold,
          double base_jump, int fit_segments, int nodes, double frame_rate,
          std::int64_t front_frame_offset, const std::map<std::string, std::int64_t>& frame_offsets, double min_yield, double max_unpaired,
-         double max_epipolar_px, const std::string& calibration_unit, const std::string& source,
-         const py::object& progress) {
+         double max_epipolar_px, const std::string& calibration_unit,
+         const std::vector<std::tuple<std::string, std::vector<std::string>, int>>& whiskers,
+         const std::string& source, const py::object& progress) -> py::object {
         recon::ReconstructOptions o;
         o.edges = edges_arg(peg, "peg", true);
         for (const Edge& e : edges_arg(edge, "edge", false)) o.edges.push_back(e);
@@ -74,6 +76,23 @@ void bind_recon(py::module_& m) {
           files.views.push_back({name, path, camera, {measurements, whisker_id, bodyparts, individual}});
         files.calibration = calibration;
         files.calibration_unit = calibration_unit;
+        if (!whiskers.empty()) {
+          // Several whiskers: [(name, trial or None, report JSON or None, error)] (recon::reconstruct_whiskers).
+          std::vector<recon::WhiskerSelection> selections;
+          for (const auto& [name, bodyparts_of, identity] : whiskers) selections.push_back({name, bodyparts_of, identity});
+          std::vector<recon::WhiskerTrial> rs = run_interruptible(
+              [&](const RunControl& control) { return recon::reconstruct_whiskers(files, selections, o, source, control); },
+              progress);
+          py::list out;
+          for (auto& w : rs) {
+            if (w.result)
+              out.append(py::make_tuple(w.name, std::move(w.result->trial), recon::report_json(w.result->reconstruction, -1),
+                                        w.error));
+            else
+              out.append(py::make_tuple(w.name, py::none(), py::none(), w.error));
+          }
+          return py::object(std::move(out));
+        }
         recon::ReconstructedTrial r = run_interruptible(
             [&](const RunControl& control) { return recon::reconstruct_files(files, o, source, control); }, progress);
         return py::make_tuple(std::move(r.trial), recon::report_json(r.reconstruction, -1));
@@ -82,7 +101,7 @@ void bind_recon(py::module_& m) {
       py::arg("individual"), py::arg("whisker_id"), py::arg("min_likelihood"), py::arg("max_reprojection_px"),
       py::arg("contact_threshold"), py::arg("base_jump"), py::arg("fit_segments"), py::arg("nodes"),
       py::arg("frame_rate"), py::arg("front_frame_offset"), py::arg("frame_offsets"), py::arg("min_yield"), py::arg("max_unpaired"),
-      py::arg("max_epipolar_px"), py::arg("calibration_unit"), py::arg("source"), py::arg("progress"));
+      py::arg("max_epipolar_px"), py::arg("calibration_unit"), py::arg("whiskers"), py::arg("source"), py::arg("progress"));
   // The pixels of world points [m] through one camera of a calibration (recon::read_calibration), with its
   // distortion: what the reconstruction assumes, checked against cv2.projectPoints in python/tests.
   m.def(

@@ -2,6 +2,7 @@
 options give the same trial, value for value; flagged frames stay flagged; progress counts frames."""
 
 import json
+import struct
 import subprocess
 
 import numpy as np
@@ -216,3 +217,129 @@ def test_unit_names_of_contact_threshold_and_base_jump(tmp_path):
     with pytest.raises(TypeError, match="both contact_threshold_m and its deprecated name"):
         vibrissa.reconstruct(tmp_path / "top.csv", tmp_path / "front.csv", tmp_path / "cams.json",
                              contact_threshold=2e-4, contact_threshold_m=2e-4)
+
+
+WHISKERS = {"C1": (0.0, 5.0), "C2": (0.003, 15.0), "C3": (0.006, 25.0)}  # base y [m], theta at frame 0 [deg]
+
+
+def whisker_points(name, i, n=15):
+    """Whisker `name` in frame i: a 30 mm whisker y = 8 x^2 whose base is WHISKERS[name][0] along y."""
+    dy, th0 = WHISKERS[name]
+    x = np.linspace(0.0, 0.03, n)
+    th = np.radians(th0 + 2.0 * i)
+    return np.stack([x * np.cos(th) - 8 * x**2 * np.sin(th), dy + x * np.sin(th) + 8 * x**2 * np.cos(th), 0 * x], 1)
+
+
+def pegs_mm(names):
+    """One peg per whisker, through its point 20 mm out in frame 6 (every trial needs a contact period)."""
+    return [a for w in names for a in ("--peg-mm", *[repr(v * 1e3) for v in whisker_points(w, 6, n=4)[2]])]
+
+
+def pegs_m(names):
+    return [whisker_points(w, 6, n=4)[2] for w in names]
+
+
+def pixels(name, pts):
+    R, C = CAMERAS[name]
+    pc = (pts - C) @ R.T
+    return (pc[:, :2] / pc[:, 2:]) @ K[:2, :2].T + K[:2, 2]
+
+
+def write_dlc_whiskers(tmp_path, frames=10):
+    """Both views as DeepLabCut CSVs whose keypoints name three whiskers (c1_0 ... c3_14), in shuffled order."""
+    write_views(tmp_path, frames=1)  # the calibration
+    parts = [f"{w.lower()}_{k}" for w in WHISKERS for k in range(15)]
+    order = np.random.default_rng(1).permutation(len(parts))
+    for view in ("top", "front"):
+        head = ["scorer," + ",".join(["dlc"] * 3 * len(parts)),
+                "bodyparts," + ",".join(parts[j] for j in order for _ in range(3)),
+                "coords," + ",".join(["x", "y", "likelihood"] * len(parts))]
+        rows = []
+        for i in range(frames):
+            px = {w: pixels(view, whisker_points(w, i)) for w in WHISKERS}
+            cells = []
+            for j in order:
+                w, k = parts[j].split("_")
+                u, v = px[w.upper()][int(k)]
+                cells += [f"{u:.6f}", f"{v:.6f}", "0.99"]
+            rows.append(f"{i}," + ",".join(cells))
+        (tmp_path / f"{view}_dlc.csv").write_text("\n".join(head + rows) + "\n")
+
+
+def test_several_whiskers_of_deeplabcut_keypoints(cli, tmp_path):
+    write_dlc_whiskers(tmp_path)
+    spec = {w: [f"{w.lower()}_{k}" for k in range(15)] for w in WHISKERS}
+    run = subprocess.run([cli, "reconstruct", "--top", str(tmp_path / "top_dlc.csv"), "--front",
+                          str(tmp_path / "front_dlc.csv"), "--calibration", str(tmp_path / "cams.json"),
+                          *[a for w, parts in spec.items() for a in ("--whisker", f"{w}={','.join(parts)}")],
+                          *pegs_mm(WHISKERS),
+                          "-o", str(tmp_path / "out" / "trial.h5"), "--report", str(tmp_path / "out" / "report.json")],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    table = [line.split("\t") for line in run.stdout.splitlines() if "\t" in line]
+    assert table[0][:3] == ["whisker", "frames", "reconstructed"]
+    assert [(r[0], r[1], r[2]) for r in table[1:]] == [(w, "10", "10") for w in WHISKERS]
+    results = vibrissa.reconstruct(tmp_path / "top_dlc.csv", tmp_path / "front_dlc.csv", tmp_path / "cams.json",
+                                   whiskers=spec, peg_m=pegs_m(WHISKERS))
+    assert list(results) == list(WHISKERS)
+    for w, (trial, report) in results.items():
+        from_cli = vibrissa.read_trial(str(tmp_path / "out" / w / "trial.h5"))
+        np.testing.assert_array_equal(trial.shape_W, from_cli.shape_W)
+        cli_report = json.loads((tmp_path / "out" / w / "report.json").read_text())
+        assert report["checks"] == cli_report["checks"]  # (the pegs differ in the last bit: mm -> m)
+        assert [f["status"] for f in report["frames"]] == [f["status"] for f in cli_report["frames"]]
+        for i in range(10):  # each whisker is itself, not a neighbour
+            np.testing.assert_allclose(trial.base_W[i], whisker_points(w, i)[0], atol=1e-6)
+    # A whisker whose keypoints are not in the files fails by name; the others are still written.
+    run = subprocess.run([cli, "reconstruct", "--top", str(tmp_path / "top_dlc.csv"), "--front",
+                          str(tmp_path / "front_dlc.csv"), "--calibration", str(tmp_path / "cams.json"),
+                          "--whisker", "C1=" + ",".join(spec["C1"]), "--whisker", "D1=d1_0,d1_1,d1_2", *pegs_mm(WHISKERS),
+                          "-o", str(tmp_path / "out2" / "trial.h5")], capture_output=True, text=True)
+    assert run.returncode == 1
+    assert "1 of 2 whiskers failed" in run.stderr and "whisker 'D1'" in run.stderr and "d1_0" in run.stderr
+    assert (tmp_path / "out2" / "C1" / "trial.h5").exists()
+    with pytest.raises(RuntimeError, match="whisker 'D1'"):
+        vibrissa.reconstruct(tmp_path / "top_dlc.csv", tmp_path / "front_dlc.csv", tmp_path / "cams.json",
+                             whiskers={"D1": "d1_0,d1_1,d1_2"})
+
+
+def write_janelia(path_whiskers, path_measurements, view, frames):
+    """Text .whiskers (whisker1) with whiskers C1 and C2 as segments 0 and 1 of each frame, stored tip first,
+    and measv3 measurements labelling them 7 and 3 (a third segment, noise, is labelled -1)."""
+    lines = ["whisker1 (frame,id,time,n,x1,y1,thick1,score1...)"]
+    rows = []  # (frame, segment, label, follicle x, y)
+    for i in range(frames):
+        for seg, (w, label) in enumerate((("C1", 7), ("C2", 3), (None, -1))):
+            px = pixels(view, whisker_points(w, i)) if w else np.array([[5.0, 5.0], [6.0, 6.0], [7.0, 7.0]])
+            tip_first = px[::-1]
+            cells = [f"{u:.6f},{v:.6f},1,1" for u, v in tip_first]
+            lines.append(f"{i},{seg},{i},{len(px)}," + ",".join(cells))
+            rows.append((i, seg, label, *px[0]))
+    path_whiskers.write_text("\n".join(lines) + "\n")
+    data = bytearray(b"measv3\0\0") + struct.pack("<ii", len(rows), 2)
+    for fid, wid, state, fx, fy in reversed(rows):  # written last row first
+        data += struct.pack("<10i", 0, fid, wid, state, 0, 0, 0, 1, 0, 2) + b"x" + struct.pack("<4d", fx, fy, 0.0, 0.0)
+    path_measurements.write_bytes(bytes(data))
+
+
+def test_several_whiskers_of_janelia_labels(cli, tmp_path):
+    write_views(tmp_path, frames=1)  # the calibration
+    for view in ("top", "front"):
+        write_janelia(tmp_path / f"{view}.whiskers", tmp_path / f"{view}.measurements", view, frames=8)
+    args = [cli, "reconstruct", "--view", f"top={tmp_path / 'top.whiskers'}", "--view",
+            f"front={tmp_path / 'front.whiskers'}", "--measurements", f"top={tmp_path / 'top.measurements'}",
+            "--measurements", f"front={tmp_path / 'front.measurements'}", "--calibration", str(tmp_path / "cams.json"),
+            *pegs_mm(["C1", "C2"])]
+    run = subprocess.run(args + ["--all-whiskers", "-o", str(tmp_path / "j" / "t.h5")], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert sorted(p.name for p in (tmp_path / "j").iterdir()) == ["3", "7"]  # every label, by label
+    results = vibrissa.reconstruct(views={"top": tmp_path / "top.whiskers", "front": tmp_path / "front.whiskers"},
+                                   measurements={"top": tmp_path / "top.measurements",
+                                                 "front": tmp_path / "front.measurements"},
+                                   calibration=tmp_path / "cams.json", whiskers={"C1": 7, "C2": 3},
+                                   peg_m=pegs_m(["C1", "C2"]))
+    for w, label in (("C1", "7"), ("C2", "3")):
+        trial, _ = results[w]
+        np.testing.assert_array_equal(trial.shape_W, vibrissa.read_trial(str(tmp_path / "j" / label / "t.h5")).shape_W)
+        for i in range(8):
+            np.testing.assert_allclose(trial.base_W[i], whisker_points(w, i)[0], atol=1e-6)

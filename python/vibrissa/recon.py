@@ -9,6 +9,8 @@ import os
 import tempfile
 import warnings
 
+import numpy as np
+
 from . import _vibrissa
 from .batch import _warn_deprecated
 from ._track_inputs import existing_path, track_file
@@ -29,8 +31,8 @@ def reconstruct(top=None, front=None, calibration=None, *, views=None, cameras=N
                 whisker_id=0, top_measurements="", front_measurements="", min_likelihood=0.5,
                 max_reprojection_px=2.0, contact_threshold_m=None, base_jump_m=None, fit_segments=6, nodes=40,
                 frame_rate=1000.0, front_frame_offset=0, frame_offsets=None, min_yield=0.5, max_unpaired=0.05,
-                max_epipolar_px=2.0, calibration_unit="", source=None, progress=None, peg=None, edge=None,
-                contact_threshold=None, base_jump=None):
+                max_epipolar_px=2.0, calibration_unit="", whiskers=None, source=None, progress=None, peg=None,
+                edge=None, contact_threshold=None, base_jump=None):
     """Reconstructs a trial as ``vibrissa reconstruct`` does. SI units (the CLI's ``--peg-mm``, ``--edge-mm``,
     ``--contact-threshold-um`` and ``--base-jump-um`` are in mm / µm; here metres, as the names say).
 
@@ -50,6 +52,11 @@ def reconstruct(top=None, front=None, calibration=None, *, views=None, cameras=N
     ``max_epipolar_px``; inconsistent inputs raise RuntimeError naming each problem and its likely cause. Deprecated names:
     ``peg=``, ``edge=``, ``contact_threshold=``, ``base_jump=`` (same metres as ``peg_m=``, ``edge_m=``,
     ``contact_threshold_m=``, ``base_jump_m=``). ``progress(done, total)`` counts frames.
+
+    Several whiskers in one video: ``whiskers={"C2": ["c2_0", "c2_1", ...], "C1": [...]}`` (DeepLabCut keypoints
+    base to tip, the same names in every view) or ``whiskers={"C2": 3, "C1": 5}`` (Janelia labels, the
+    measurements' ``state``); then the result is a dict name -> ``(trial, report)``, in the given order, and a
+    whisker that fails raises RuntimeError naming it (the CLI writes the others).
 
     Returns ``(trial, report)``: a :class:`~vibrissa.Trial` (flagged frames have ``reconstructed`` 0 and NaN
     values) and the ``--report`` JSON as a dict. Likely unit slips of the result (``trial.warnings``: a peg
@@ -88,18 +95,38 @@ def reconstruct(top=None, front=None, calibration=None, *, views=None, cameras=N
         raise ValueError(f"measurements: no view named {sorted(unknown)}")
     given = {n: existing_path(m, label) for n, (m, label) in given.items() if os.fspath(m)}
     offsets = {str(k): int(v) for k, v in dict(frame_offsets or {}).items()}
+    selections = []
+    for name, spec in dict(whiskers or {}).items():
+        if isinstance(spec, (int, np.integer)) and not isinstance(spec, bool):
+            selections.append((str(name), [], int(spec)))
+        elif isinstance(spec, str):
+            selections.append((str(name), [b for b in spec.split(",") if b], -1))
+        else:
+            selections.append((str(name), [str(b) for b in spec], -1))
+        if selections[-1][2] < 0 and len(selections[-1][1]) < 2:
+            raise ValueError(f"whiskers['{name}']: {spec!r}: a whisker needs at least two keypoints, base to tip, "
+                             "or a Janelia label (int >= 0)")
     with tempfile.TemporaryDirectory(prefix="vibrissa-tracks-") as folder:
         files = [(name, *track_file(value, name, folder), camera) for name, value, camera in named]
-        trial, report = _vibrissa._reconstruct(
+        result = _vibrissa._reconstruct(
             [[name, path, camera, given.get(name, "")] for name, path, _, camera in files],
             existing_path(calibration, "calibration"), peg_m, edge_m, list(bodyparts), str(individual),
             int(whisker_id), float(min_likelihood), float(max_reprojection_px), float(contact_threshold_m),
             float(base_jump_m), int(fit_segments), int(nodes), float(frame_rate), int(front_frame_offset), offsets,
-            float(min_yield), float(max_unpaired), float(max_epipolar_px), str(calibration_unit),
+            float(min_yield), float(max_unpaired), float(max_epipolar_px), str(calibration_unit), selections,
             files[0][2] if source is None else str(source), progress)
-    report = json.loads(report)
+    if not selections:
+        return _finish(result[0], json.loads(result[1]))
+    failed = [f"whisker '{name}': {error}" for name, t, _, error in result if t is None]
+    if failed:
+        raise RuntimeError(f"{len(failed)} of {len(result)} whiskers failed:\n  - " + "\n  - ".join(failed))
+    return {name: _finish(t, json.loads(r)) for name, t, r, _ in result}
+
+
+def _finish(trial, report):
+    """The report with the trial's likely unit slips, each also raised with warnings.warn."""
     report.setdefault("warnings", [])
     for message in trial.warnings:  # likely unit slips: a peg out of reach, a whisker of implausible size
-        warnings.warn(message, stacklevel=2)
+        warnings.warn(message, stacklevel=3)
         report["warnings"].append(message)  # as the CLI's --report
     return trial, report

@@ -18,6 +18,6 @@ def reconstruct(top: Optional[_Tracks] = None, front: Optional[_Tracks] = None, 
                 frame_rate: float = 1000.0, front_frame_offset: int = 0,
                 frame_offsets: Optional[Mapping[str, int]] = None, min_yield: float = 0.5,
                 max_unpaired: float = 0.05, max_epipolar_px: float = 2.0, calibration_unit: str = "",
-                source: Optional[str] = None, progress: Optional[Callable[[int, int], Any]] = None,
+                whiskers: Optional[Mapping[str, Union[int, str, Sequence[str]]]] = None, source: Optional[str] = None, progress: Optional[Callable[[int, int], Any]] = None,
                 peg: Optional[Any] = None, edge: Optional[Any] = None, contact_threshold: Optional[float] = None,
-                base_jump: Optional[float] = None) -> Tuple[Trial, Dict[str, Any]]: ...
+                base_jump: Optional[float] = None) -> Any: ...  # (Trial, report dict); with whiskers=: {name: (Trial, report dict)}

@@ -1,6 +1,7 @@
 #include "vibrissa/recon/reconstruct_files.hpp"
 
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -52,6 +53,70 @@ ReconstructedTrial reconstruct_files(const ReconstructFiles& files, const Recons
     std::string msg = "inconsistent inputs (" + inputs + files.calibration + "): " + summary_line(out);
     for (const auto& p : out.reconstruction.problems) msg += "\n  - " + p;
     throw InconsistentViews(msg);
+  }
+  return out;
+}
+
+WhiskerSelection parse_whisker(const std::string& spec) {
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
+    throw std::invalid_argument("--whisker expects NAME=KEYPOINTS (c2_0,c2_1,...) or NAME=LABEL (Janelia), got '" + spec + "'");
+  WhiskerSelection w;
+  w.name = spec.substr(0, eq);
+  const std::string value = spec.substr(eq + 1);
+  if (value.find_first_not_of("0123456789") == std::string::npos && value.size() < 10) {
+    w.identity = std::stoi(value);
+    return w;
+  }
+  std::size_t start = 0;
+  while (start <= value.size()) {
+    const std::size_t comma = std::min(value.find(',', start), value.size());
+    if (comma > start) w.bodyparts.push_back(value.substr(start, comma - start));
+    start = comma + 1;
+  }
+  if (w.bodyparts.size() < 2)
+    throw std::invalid_argument("--whisker " + w.name + ": '" + value + "' names " + std::to_string(w.bodyparts.size()) +
+                                " keypoint; a whisker needs at least two, base to tip (or a Janelia label)");
+  return w;
+}
+
+std::vector<WhiskerSelection> janelia_whiskers(const std::string& measurements_path) {
+  std::set<int> labels;
+  for (const MeasurementRow& r : read_measurements(measurements_path))
+    if (r.identity >= 0) labels.insert(r.identity);
+  std::vector<WhiskerSelection> out;
+  for (int label : labels) out.push_back({std::to_string(label), {}, label});
+  if (out.empty()) throw std::invalid_argument(measurements_path + ": field 'state': no whisker is labelled (every segment has state -1)");
+  return out;
+}
+
+std::vector<WhiskerTrial> reconstruct_whiskers(const ReconstructFiles& files,
+                                               const std::vector<WhiskerSelection>& whiskers,
+                                               const ReconstructOptions& options, const std::string& source,
+                                               const RunControl& control) {
+  std::set<std::string> names;
+  for (const auto& w : whiskers)
+    if (w.name.empty() || !names.insert(w.name).second)
+      throw std::invalid_argument("whiskers: the name '" + w.name + "' is empty or given twice");
+  std::vector<WhiskerTrial> out;
+  for (const auto& w : whiskers) {
+    ReconstructFiles one = files;
+    for (ViewFile& v : one.views) {
+      if (w.identity >= 0)
+        v.selection.identity = w.identity;
+      else
+        v.selection.bodyparts = w.bodyparts;
+    }
+    WhiskerTrial t;
+    t.name = w.name;
+    try {
+      t.result = reconstruct_files(one, options, source + " [whisker " + w.name + "]", control);
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const std::exception& e) {
+      t.error = e.what();
+    }
+    out.push_back(std::move(t));
   }
   return out;
 }

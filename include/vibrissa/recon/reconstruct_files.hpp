@@ -2,6 +2,7 @@
 // `vibrissa reconstruct` as one library call (docs/reconstruction.md), shared by the CLI and the Python
 // binding (vibrissa.reconstruct): read the calibration and every named view's tracks, reconstruct every frame,
 // build the trial, and describe the result as the report JSON text.
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,6 +43,31 @@ struct InconsistentViews : std::runtime_error {
 /// inconsistent inputs throw InconsistentViews.
 ReconstructedTrial reconstruct_files(const ReconstructFiles& files, const ReconstructOptions& options,
                                      const std::string& source, const RunControl& control = {});
+
+/// One whisker of a video that holds several (docs/reconstruction.md, "Many whiskers per video"): its name and
+/// how every view's tracks select it: DeepLabCut keypoints (base to tip) or a Janelia label.
+struct WhiskerSelection {
+  std::string name;
+  std::vector<std::string> bodyparts;  ///< DeepLabCut keypoints, base to tip (when identity < 0)
+  int identity = -1;                   ///< Janelia whisker label (measurements 'state'), or -1
+};
+/// `NAME=SPEC` (the CLI's --whisker): SPEC an integer is a Janelia label, else comma-separated keypoints.
+/// Throws std::invalid_argument naming the argument.
+WhiskerSelection parse_whisker(const std::string& spec);
+/// Every whisker label (>= 0) of a Janelia .measurements file, in increasing order, named by the label.
+std::vector<WhiskerSelection> janelia_whiskers(const std::string& measurements_path);
+
+struct WhiskerTrial {
+  std::string name;
+  std::optional<ReconstructedTrial> result;  ///< empty when this whisker failed
+  std::string error;                         ///< why it failed (inconsistent inputs, a missing keypoint, ...)
+};
+/// reconstruct_files once per whisker, each view's selection replaced by the whisker's; a failure of one
+/// whisker (an error or inconsistent inputs) is recorded, the others go on. Names must be distinct.
+std::vector<WhiskerTrial> reconstruct_whiskers(const ReconstructFiles& files,
+                                               const std::vector<WhiskerSelection>& whiskers,
+                                               const ReconstructOptions& options, const std::string& source,
+                                               const RunControl& control = {});
 
 /// The `--report` JSON text: per frame (status, points used, reprojection, closest approach, contact arc
 /// length) and per contact period (undeflected shape and where it comes from).
