@@ -198,3 +198,25 @@ TEST(MultiView, AViewThatDisagreesWithTheOthersIsNamed) {
                                          ReconstructOptions{});
   EXPECT_TRUE(mentions(rec, "view 'side' disagrees with every other view")) << problems(rec);
 }
+
+// A third view out of step is named with the offset to give (--frame-offset side=N); given, it is accepted.
+TEST(MultiView, AViewOutOfStepIsNamedWithItsOffset) {
+  const int n = 40, shift = 10;
+  const Tracks2D top = seen(top_cam, n, 1), front = seen(front_cam, n, 2);
+  Tracks2D side = seen(side_cam, n, 3);  // the side video starts 10 frames later (and ends with the others)
+  side.frames.erase(side.frames.begin(), side.frames.begin() + shift);
+  for (auto& f : side.frames) f.frame -= shift;
+  const std::vector<View> views{{"top", top, top_cam}, {"front", front, front_cam}, {"side", side, side_cam}};
+  const Reconstruction rec = reconstruct(views, ReconstructOptions{});
+  EXPECT_TRUE(mentions(rec, "--frame-offset side=N: side frame f is top frame f + N")) << problems(rec);
+  ReconstructOptions o;
+  o.frame_offsets["side"] = shift;
+  const Reconstruction fixed = reconstruct(views, o);
+  EXPECT_TRUE(fixed.problems.empty()) << problems(fixed);
+  o.front_frame_offset = 3;
+  o.frame_offsets["front"] = 3;
+  EXPECT_THROW(reconstruct(views, o), std::invalid_argument);
+  o.frame_offsets.erase("front");
+  o.frame_offsets["sid"] = 1;
+  EXPECT_THROW(reconstruct(views, o), std::invalid_argument);
+}
