@@ -82,7 +82,8 @@ class SweepStore:
         already listed are ignored (a task computed twice is stored once)."""
         if str(chunk) in self.index:
             return
-        self._check_coordinates(result)
+        if result["runs"]:
+            self._check_coordinates(result)
         name = f"chunks/chunk-{chunk:06d}.npz"
         arrays = {f"variable/{n}": values for n, (_, _, values) in result["variables"].items()}
         arrays.update({f"coordinate/{n}": values for n, (_, _, values) in result["coords"].items()})
@@ -90,8 +91,11 @@ class SweepStore:
                 for kind in ("variables", "coords")}
         with _replacing(self.directory / name) as tmp, open(tmp, "wb") as f:
             np.savez(f, runs=np.asarray(result["runs"]), meta=np.array(json.dumps(meta)), **arrays)
-        self.index[str(chunk)] = {"file": name, "runs": [min(result["runs"]), max(result["runs"]) + 1],
-                                  "build": result["build"]}
+        failed = result.get("failed", [])
+        every = list(result["runs"]) + [i for i, _ in failed]
+        self.index[str(chunk)] = {"file": name, "runs": [min(every), max(every) + 1], "build": result["build"]}
+        if failed:
+            self.index[str(chunk)]["failed"] = failed
         _write_json(self.directory / "index.json", {"chunks": self.index})
 
     def _load(self, chunk):
@@ -124,7 +128,11 @@ class SweepStore:
         import h5py
 
         chunks = sorted(self.index, key=int)
-        _, first, coords, meta = self._load(chunks[0])
+        failed = [entry for c in chunks for entry in self.index[c].get("failed", [])]
+        with_runs = [c for c in chunks if len(self._load(c)[0])]
+        if not with_runs:
+            raise ValueError(f"every run of the sweep failed; the first: {min(failed)[1]}")
+        _, first, coords, meta = self._load(with_runs[0])
         if parameters is not None:
             names = list(parameters)
             shape = tuple(len(v) for v in parameters.values())
@@ -160,7 +168,18 @@ class SweepStore:
                     # A run's values as one compressed HDF5 chunk when they are many; small ones stored plainly.
                     layout = ({"chunks": (1,) * len(names) + values.shape[1:], "compression": "gzip",
                                "compression_opts": 1} if values[0].size >= _COMPRESS_FROM else {})
-                    f.create_variable(name, dims, values.dtype, **layout).attrs.update(attrs)
+                    # A failed run (on_error="record") keeps the fill value, NaN, or -1 for integers, which xarray
+                    # reads as NaN too (the variable becomes float); none without failures (dtypes as before).
+                    fill = None if not failed else (np.nan if values.dtype.kind == "f" else
+                                                    -1 if values.dtype.kind in "iu" else None)
+                    f.create_variable(name, dims, values.dtype, fillvalue=fill, **layout).attrs.update(attrs)
+                if self.spec.get("on_error") == "record":  # why each failed run failed ("" for the others)
+                    messages = np.full(shape, "", dtype=object)
+                    for index, message in failed:
+                        messages[np.unravel_index(int(index), shape)] = message
+                    error = f.create_variable("error", tuple(names), h5py.string_dtype())
+                    error.attrs.update({"long_name": "why the run failed (empty: it ran)"})
+                    error[...] = messages
             with h5py.File(tmp, "r+") as f:
                 for chunk in chunks:
                     run_indices, variables, _, _ = self._load(chunk)
