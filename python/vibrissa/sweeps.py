@@ -336,7 +336,7 @@ def main(argv=None):
         config = json.loads(path.read_text())
         if not isinstance(config, dict):
             raise ValueError("the sweep configuration must be a JSON object")
-        known = {"kind", "base", "grid", "runs", "variables", "chunk_size", "out", "workers", "scheduler"}
+        known = {"kind", "base", "grid", "runs", "variables", "chunk_size", "out", "workers", "scheduler", "on_error"}
         unknown = sorted(set(config) - known)
         if unknown:
             raise ValueError(f"unknown key(s) {unknown} (expected {sorted(known)})")
@@ -359,7 +359,8 @@ def main(argv=None):
         started = time.monotonic()
         result = sweep(config["kind"], base, grid=config.get("grid"), runs=config.get("runs"), out=out,
                        variables=config.get("variables"), scheduler=scheduler, workers=workers,
-                       chunk_size=args.chunk_size or config.get("chunk_size"), progress=_progress_bar(sys.stderr))
+                       chunk_size=args.chunk_size or config.get("chunk_size"), progress=_progress_bar(sys.stderr),
+                       on_error=config.get("on_error", "record"))
     except KeyboardInterrupt:
         print(f"\nvibrissa sweep: interrupted; the finished chunks are in {out}: run the same command to resume",
               file=sys.stderr)
