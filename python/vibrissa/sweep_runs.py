@@ -175,18 +175,23 @@ def _solve_run(config):
 _RUNNERS = {"array": _array_run, "trial": _trial_run, "solve": _solve_run}
 
 
-def run_chunk(kind, base, runs, variables=None):
+def run_chunk(kind, base, runs, variables=None, on_error="raise"):
     """Runs `runs` ([(run index, {path: value}), ...]) of `kind` on `base`; returns the chunk's results:
     {"runs": [indices], "coords": {name: (dims, attrs, values)}, "variables": {name: (("run", *dims), attrs,
-    values stacked over runs)}, "build": build_id()}. `variables` (names) keeps only those. A run that fails
-    raises its error (ValueError, TypeError, ...) with the run's index and parameters in front."""
-    coords, stacked = None, {}
+    values stacked over runs)}, "failed": [[index, message], ...], "build": build_id()}. `variables` (names)
+    keeps only those. A run that fails raises its error (ValueError, TypeError, ...) with the run's index and
+    parameters in front, or with on_error="record" is listed in "failed" (and not in "runs") and the chunk goes
+    on. KeyboardInterrupt and other non-Exception errors always propagate."""
+    coords, stacked, failed = None, {}, []
     for index, overrides in runs:
         try:
             run_coords, run_variables = _RUNNERS[kind](configured(base, overrides))
         except Exception as error:  # name the run: the message travels back to the client
             where = ", ".join(f"{p}={v!r}" for p, v in overrides.items())
             message = f"sweep run {index} ({where or 'the base configuration'}): {error}"
+            if on_error == "record":
+                failed.append([index, message])
+                continue
             try:
                 renamed = type(error)(message)
             except Exception:
@@ -212,7 +217,8 @@ def run_chunk(kind, base, runs, variables=None):
             packed[name] = (dims, attrs, pack(values))
         else:
             out[name] = (dims, attrs, values)
-    return {"runs": [index for index, _ in runs], "coords": coords, "variables": out, "packed": packed,
+    done = [index for index, _ in runs if index not in {i for i, _ in failed}]
+    return {"runs": done, "coords": coords or {}, "variables": out, "packed": packed, "failed": failed,
             "build": build_id()}
 
 

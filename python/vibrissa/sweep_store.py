@@ -85,7 +85,8 @@ class SweepStore:
         already listed are ignored (a task computed twice is stored once)."""
         if str(chunk) in self.index:
             return
-        self._check_coordinates(result)
+        if result["runs"]:
+            self._check_coordinates(result)
         name = f"chunks/chunk-{chunk:06d}.npz"
         arrays = {f"variable/{n}": values for n, (_, _, values) in result["variables"].items()}
         arrays.update({f"coordinate/{n}": values for n, (_, _, values) in result["coords"].items()})
@@ -97,8 +98,11 @@ class SweepStore:
             meta["packed"][n].update(dtype=packed["dtype"], shape=packed["shape"])
         with _replacing(self.directory / name) as tmp, open(tmp, "wb") as f:
             np.savez(f, runs=np.asarray(result["runs"]), meta=np.array(json.dumps(meta)), **arrays)
-        self.index[str(chunk)] = {"file": name, "runs": [min(result["runs"]), max(result["runs"]) + 1],
-                                  "build": result["build"]}
+        failed = result.get("failed", [])
+        every = list(result["runs"]) + [i for i, _ in failed]
+        self.index[str(chunk)] = {"file": name, "runs": [min(every), max(every) + 1], "build": result["build"]}
+        if failed:
+            self.index[str(chunk)]["failed"] = failed
         _write_json(self.directory / "index.json", {"chunks": self.index})
 
     def _load(self, chunk):
@@ -133,7 +137,11 @@ class SweepStore:
         import h5py
 
         chunks = sorted(self.index, key=int)
-        _, first, coords, meta, _ = self._load(chunks[0])
+        failed = [entry for c in chunks for entry in self.index[c].get("failed", [])]
+        with_runs = [c for c in chunks if len(self._load(c)[0])]
+        if not with_runs:
+            raise ValueError(f"every run of the sweep failed; the first: {min(failed)[1]}")
+        _, first, coords, meta, _ = self._load(with_runs[0])
         if parameters is not None:
             names = list(parameters)
             shape = tuple(len(v) for v in parameters.values())
@@ -172,7 +180,19 @@ class SweepStore:
                     attrs = dict(m["attrs"])
                     if coordinates:
                         attrs["coordinates"] = " ".join(coordinates)
-                    f.create_variable(name, (*names, *m["dims"][1:]), dtype, **layout).attrs.update(attrs)
+                    # A failed run (on_error="record") keeps the fill value, NaN, or -1 for integers, which xarray
+                    # reads as NaN too (the variable becomes float); none without failures (dtypes as before).
+                    fill = None if not failed else (np.nan if dtype.kind == "f" else
+                                                    -1 if dtype.kind in "iu" else None)
+                    f.create_variable(name, (*names, *m["dims"][1:]), dtype, fillvalue=fill,
+                                      **layout).attrs.update(attrs)
+                if self.spec.get("on_error") == "record":  # why each failed run failed ("" for the others)
+                    messages = np.full(shape, "", dtype=object)
+                    for index, message in failed:
+                        messages[np.unravel_index(int(index), shape)] = message
+                    error = f.create_variable("error", tuple(names), h5py.string_dtype())
+                    error.attrs.update({"long_name": "why the run failed (empty: it ran)"})
+                    error[...] = messages
             with h5py.File(tmp, "r+") as f:
                 for chunk in chunks:
                     run_indices, variables, _, meta, packed = self._load(chunk)
