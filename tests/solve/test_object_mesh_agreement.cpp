@@ -113,7 +113,7 @@ TEST(ObjectMeshAgreement, TessellatedSphereBehavesLikeTheSphere) {
     const Mesh mesh(tessellated_sphere(Eigen::Vector3d::Zero(), R, subdivisions));
     const Agreement g = compare(ball, mesh, 40, place);
     report("sphere", mesh, g);
-    EXPECT_GE(g.same_status, 0.85 * g.cases);  // (measured: 36 of 40 at both resolutions; the issue asks for all)
+    EXPECT_GE(g.same_status, 0.9 * g.cases);  // (measured: 38 and 39 of 40; the issue asks for all)
     // The inscribed mesh lies inside the sphere by up to e^2 / (8 R): the contact point within a few of that.
     EXPECT_LT(*std::max_element(g.point_error.begin(), g.point_error.end()), 3.0 * mesh.longest_edge());
     if (previous > 0.0) {  // edges halved: the difference a quarter at second order (measured 0.43 of it)
@@ -141,8 +141,8 @@ TEST(ObjectMeshAgreement, TessellatedCylinderBehavesLikeTheCylinder) {
   const Mesh mesh(tessellated_cylinder(base, R, length, 64, 16));
   const Agreement g = compare(peg, mesh, 40, place);
   report("cylinder", mesh, g);
-  // (measured: 30 of 40; the issue asks for all: docs/objects.md "Meshes against the analytic objects")
-  EXPECT_GE(g.same_status, 0.7 * g.cases);
+  // (measured: 33 of 40; the issue asks for all: docs/objects.md "Meshes against the analytic objects")
+  EXPECT_GE(g.same_status, 0.8 * g.cases);
   // Along the axis the contact is fixed by the whisker's tangency alone (a facet is straight there, as the
   // cylinder): it moves with the facet's tilt about the whisker (measured up to 0.32 mm).
   EXPECT_LT(*std::max_element(g.point_error.begin(), g.point_error.end()), 0.25 * R);
