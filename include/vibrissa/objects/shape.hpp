@@ -89,7 +89,7 @@ class Shape {
   /// The query against one feature of an earlier answer (its `feature_id`) continued as a smooth surface: a
   /// face's plane, an edge's line, a vertex's point. It equals nearest(p) wherever that feature is nearest, and
   /// is smooth where nearest() turns from one feature to the next: the object solves hold a feature while
-  /// Newton converges and then check it (docs/objects.md, "Creases"). Smooth shapes (feature_id -1): nearest().
+  /// Newton converges and then check it (docs/objects.md, "Solver"). Smooth shapes (feature_id -1): nearest().
   [[nodiscard]] virtual SurfacePoint nearest_on_feature(const Eigen::Vector3d& p, std::int64_t feature_id) const {
     (void)feature_id;
     return nearest(p);
