@@ -43,6 +43,7 @@ struct ContactValue {
   double gap = std::numeric_limits<double>::infinity();
   double arc_length = 0.0;
   double anchor = 0.0;  ///< stick point's coordinate along the line [m]
+  double side = 0.0;    ///< +-1: the side of the line the whisker is on; 0: not known
   int link = 0;
   Eigen::Vector3d x_B = Eigen::Vector3d::Zero(), force_B = Eigen::Vector3d::Zero();
   Eigen::Vector3d point_W = Eigen::Vector3d::Zero(), force_W = Eigen::Vector3d::Zero();
@@ -77,7 +78,6 @@ class Integrator {
       u.direction_W = o.direction_W.normalized();
       objects_.push_back(u);
     }
-    side_.assign(objects_.size(), 0.0);
   }
 
   Frame frame(double t) const {
@@ -94,7 +94,8 @@ class Integrator {
   /// Contacts at (eta, rate); `previous`: the contact states and anchors at the start of the step.
   void evaluate_contacts(const Frame& f, const Eigen::VectorXd& eta, const Eigen::VectorXd& rate,
                          const std::vector<ContactValue>& previous, std::vector<ContactValue>& out,
-                         Eigen::VectorXd& modal_force, std::vector<Eigen::MatrixXd>* U) {
+                         Eigen::VectorXd& modal_force, std::vector<Eigen::MatrixXd>* U,
+                         const std::vector<ContactState>* frozen = nullptr) {
     q_.noalias() = Phi_ * eta;
     chain_kinematics(w_, q_, kin_);
     out.assign(objects_.size(), ContactValue{});
@@ -133,11 +134,14 @@ class Integrator {
         }
       }
       // Which side of the line the whisker is on: the sign of r . (t x e) where the nearest point lies inside its
-      // link (where the centre line can cross the line); fixed at the start, so that a centre line pushed across
-      // an edge (radius 0) within one step counts as a penetration, not as the other side.
+      // link (where the centre line can cross the line), carried from step to step, so that a centre line pushed
+      // across an edge (radius 0) within one step counts as a penetration, not as the other side. Beyond the
+      // whisker's ends (the nearest point is an end node) the side is forgotten and read again later.
       const double side = best_r.dot(best_t.cross(e_B)) >= 0.0 ? 1.0 : -1.0;
-      if (side_[o] == 0.0) side_[o] = side;
-      const bool crossed = best_u_raw > 0.0 && best_u_raw < 1.0 && side != side_[o];
+      const bool interior = best_u_raw > 0.0 && best_u_raw < 1.0;
+      const double side_before = previous[o].side;
+      cv.side = interior ? (side_before != 0.0 ? side_before : side) : 0.0;
+      const bool crossed = interior && side_before != 0.0 && side != side_before;
       const double dist = best_r.norm();
       if (crossed) cv.gap = -dist - (dist - cv.gap);  // -(distance) - reach
       cv.point_W = f.base.p_W_base + R * cv.x_B;
@@ -162,7 +166,8 @@ class Integrator {
         const std::size_t u = static_cast<std::size_t>(j);
         Jt.block<3, 3>(3 * j, 0) = kin_.joint_axes_B[u].transpose() * skew(cv.x_B - kin_.nodes_B[u]);
       }
-      Eigen::MatrixXd Ui = Phi_.topRows(3 * (cv.link + 1)).transpose() * Jt;  // Phi^T J^T
+      Eigen::MatrixXd Ui(m_, 3);  // Phi^T J^T (a coefficient-wise product: 3 columns)
+      Ui.noalias() = Phi_.topRows(3 * (cv.link + 1)).transpose().lazyProduct(Jt);
       // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n.
       const double inv_mass = (Ui * n).squaredNorm();
       const double cn = 2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / std::max(inv_mass, 1e-300));
@@ -177,14 +182,30 @@ class Integrator {
         const Eigen::Vector3d dfn_dx = -kn_ * n, dfn_dv = damped ? Eigen::Vector3d(-cn * n) : Eigen::Vector3d::Zero();
         cv.S_x = n * dfn_dx.transpose();
         cv.S_v = n * dfn_dv.transpose();
-        const double trial = -kt_ * (lambda - cv.anchor);
-        if (mu > 0.0 && std::abs(trial) <= mu * fn) {
+        // Elastic-plastic friction: the stick spring's force decides stick or slip (so that the state does not
+        // chatter); a damper on the stick spring (critical for the effective mass along the line, as the normal
+        // one) adds to the force, which stays inside the cone.
+        const double ct = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * e_B).squaredNorm(), 1e-300));
+        const double spring = -kt_ * (lambda - cv.anchor), damper = -ct * e_B.dot(v_B);
+        // Newton's later iterations keep the stick/slip branch of the earlier ones (the switch is not smooth: near
+        // the cone's edge the iteration would cycle); the stage's final evaluation decides it again.
+        const ContactState keep = frozen ? (*frozen)[o] : ContactState::none;
+        const bool stick = keep != ContactState::none ? keep == ContactState::stick && mu > 0.0
+                                                      : mu > 0.0 && std::abs(spring) <= mu * fn;
+        if (stick) {
           cv.state = ContactState::stick;
-          ft = trial;
+          ft = spring + damper;
           cv.S_x -= kt_ * e_B * e_B.transpose();
+          if (keep != ContactState::none) {
+            cv.S_v -= ct * e_B * e_B.transpose();
+          } else if (std::abs(ft) > mu * fn) {
+            ft = ft > 0.0 ? mu * fn : -mu * fn;
+          } else {
+            cv.S_v -= ct * e_B * e_B.transpose();
+          }
         } else {
           cv.state = ContactState::slip;
-          const double sign = trial >= 0.0 ? 1.0 : -1.0;
+          const double sign = spring >= 0.0 ? 1.0 : -1.0;
           ft = sign * mu * fn;
           cv.anchor = lambda + ft / kt_;  // the stick point slides along with the contact
           cv.S_x += (sign * mu) * e_B * dfn_dx.transpose();
@@ -208,9 +229,14 @@ class Integrator {
     const Eigen::VectorXd b0 = A_rate + g * (f.modal_input - k_.cwiseProduct(A_eta));
     Eigen::VectorXd Y = b0.cwiseQuotient(D);
     std::vector<Eigen::MatrixXd> U;
+    std::vector<ContactState> frozen;
     for (int it = 0; it < 25; ++it) {
       out.eta = A_eta + g * Y;
-      evaluate_contacts(f, out.eta, Y, previous, out.contacts, out.contact_force, &U);
+      evaluate_contacts(f, out.eta, Y, previous, out.contacts, out.contact_force, &U, it >= 3 ? &frozen : nullptr);
+      if (it == 2) {
+        frozen.clear();
+        for (const ContactValue& cv : out.contacts) frozen.push_back(cv.state);
+      }
       out.rate = Y;
       const Eigen::VectorXd r = D.cwiseProduct(Y) - b0 - g * out.contact_force;
       // Newton matrix D - sum U S U^T with S = g (g S_x + S_v): Woodbury with the active contacts stacked.
@@ -417,7 +443,6 @@ class Integrator {
   Eigen::Index m_ = 0;
   double kn_ = 0.0, kt_ = 0.0;
   std::vector<LineObstacle> objects_;
-  std::vector<double> side_;  ///< per object: +-1 once known (0 before the first evaluation)
   Eigen::VectorXd q_, q_dot_;
   ChainKinematics kin_;
 };
