@@ -10,6 +10,7 @@
 
 #include "vibrissa/core/checks.hpp"
 #include "vibrissa/core/limits.hpp"
+#include "nonlinear_simulate.hpp"
 
 namespace vibrissa::dynamics {
 namespace {
@@ -32,6 +33,15 @@ std::string_view to_string(SimulationStatus s) {
     case SimulationStatus::completed: return "completed";
     case SimulationStatus::max_steps: return "max_steps";
     case SimulationStatus::step_too_small: return "step_too_small";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(ChainModel m) {
+  switch (m) {
+    case ChainModel::automatic: return "automatic";
+    case ChainModel::linear: return "linear";
+    case ChainModel::nonlinear: return "nonlinear";
   }
   return "unknown";
 }
@@ -92,6 +102,12 @@ void validate(const SimulationOptions& o) {
 TimeSeries simulate(const Whisker& w, const LinearModel& model, const Modes& modes, const BaseTrajectory& base,
                     const Eigen::Vector3d& gravity_W, const SimulationOptions& opt, const InitialState& initial) {
   validate(opt);
+  const bool nonlinear =
+      opt.model == ChainModel::nonlinear || (opt.model == ChainModel::automatic && !opt.objects.empty());
+  if (!nonlinear && !opt.objects.empty())
+    throw std::invalid_argument("model \"linear\" cannot touch objects (" + std::to_string(opt.objects.size()) +
+                                " given): use \"nonlinear\" or \"automatic\"");
+  if (nonlinear) return detail::simulate_nonlinear(w, model, modes, base, gravity_W, opt, initial);
   const Eigen::Index n = model.size(), m = modes.count();
   if (m != n)
     throw std::invalid_argument("simulate needs all " + std::to_string(n) + " modes of the model, got " +
