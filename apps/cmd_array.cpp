@@ -55,7 +55,7 @@ void register_array(CLI::App& app) {
   auto a = std::make_shared<ArrayArgs>();
   cmd->add_option("CONFIG", a->config, "JSON configuration (default: built-in right-side whisk against a peg)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--out", a->out, "output directory")->capture_default_str();
+  cmd->add_option("--out", a->out, "output directory")->capture_default_str()->check(output_path());
   cmd->add_option("--pitches", a->pitches, "override head.pitches_deg, e.g. -20,-10,0,10,20");
   cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")
       ->check(number_in(0, limits::max_threads));

@@ -48,7 +48,7 @@ Solution timed(F&& f, double& micros) {
 void register_demo(CLI::App& app) {
   auto* cmd = app.add_subcommand("demo", "Run the built-in case: a whisker protracted against a peg");
   auto out = std::make_shared<std::string>();
-  cmd->add_option("-o,--output", *out, "also write both results as JSON");
+  cmd->add_option("-o,--output", *out, "also write both results as JSON")->check(output_path());
   cmd->callback([out] {
     WhiskerProperties props;  // spec §2.1 defaults
     const double length = 0.040, curvature = 12.0;  // 40 mm whisker, y = 12 x^2 [1/m] (~ 0.012 /mm)

@@ -19,7 +19,8 @@ void register_modes(CLI::App& app) {
   auto out_path = std::make_shared<std::string>();
   auto count = std::make_shared<int>(0);
   cmd->add_option("CASE", *case_path, "case file (JSON: whisker, dynamics)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", *out_path, "write the modes here (JSON) instead of standard output");
+  cmd->add_option("-o,--output", *out_path, "write the modes here (JSON) instead of standard output")
+      ->check(output_path());
   cmd->add_option("-n,--count", *count, "number of modes (default: the case's \"modes\", else 10)")
       ->check(CLI::Range(1, 100000));
   cmd->callback([case_path, out_path, count] {
@@ -46,7 +47,9 @@ void register_dynamics(CLI::App& app) {
   cmd->add_option("CASE", *case_path, "case file (JSON: whisker, dynamics, whisking, initial, duration, output_rate)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--out", *out_dir, "output folder: dynamics.csv, dynamics.h5, summary.json")->required();
+  cmd->add_option("--out", *out_dir, "output folder: dynamics.csv, dynamics.h5, summary.json")
+      ->required()
+      ->check(output_path());
   cmd->callback([case_path, out_dir] {
     const io::DynamicsCase c = io::dynamics_case_from_json(read_json_file(*case_path));
     const dynamics::LinearModel model = dynamics::linear_model(c.whisker, c.properties);

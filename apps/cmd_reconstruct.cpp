@@ -67,7 +67,7 @@ void register_reconstruct(CLI::App& app) {
                   "calibration: cameras.json (vibrissa), calibration.toml (anipose) or NAME=file.yml|.json (one camera, "
                   "OpenCV FileStorage); repeat to combine")->required();
   cmd->add_option("--calibration-unit", a->calibration_unit, "length unit of anipose / OpenCV calibrations: m, mm or um");
-  cmd->add_option("-o,--out", a->out, "output trial file (.h5, .csv or .mat)")->required();
+  cmd->add_option("-o,--out", a->out, "output trial file (.h5, .csv or .mat)")->required()->check(output_path());
   cmd->add_option("--top-camera", a->top_camera, "name of the top view's camera in the calibration")->capture_default_str();
   cmd->add_option("--front-camera", a->front_camera, "name of the front view's camera")->capture_default_str();
   cmd->add_option("--measurements", a->measurements, "NAME=FILE: Janelia .measurements of view NAME's .whiskers; repeat per view");
@@ -96,7 +96,8 @@ void register_reconstruct(CLI::App& app) {
   cmd->add_option("--min-yield", opt.min_yield, "error if fewer of the frames tracked in both views are reconstructed (0: accept any)")->capture_default_str();
   cmd->add_option("--max-unpaired", opt.max_unpaired, "error if more of the frames are tracked in one view only")->capture_default_str();
   cmd->add_option("--max-epipolar-px", opt.max_epipolar_px, "error if the base points' median epipolar distance exceeds this and 4x the median reprojection error [px]")->capture_default_str();
-  cmd->add_option("--report", a->report, "also write a JSON report (per-frame status, undeflected shapes)");
+  cmd->add_option("--report", a->report, "also write a JSON report (per-frame status, undeflected shapes)")
+      ->check(output_path());
   cmd->callback([a] {
     auto& o = a->options;
     for (std::size_t k = 0; k + 2 < a->pegs_mm.size(); k += 3)
@@ -235,7 +236,7 @@ void register_calibrate(CLI::App& app) {
   auto unit = std::make_shared<std::string>("mm");
   cmd->add_option("--camera", *cameras, "NAME=points.csv (columns x,y,z,u_px,v_px); repeat per camera")->required();
   cmd->add_option("--length-unit", *unit, "unit of x, y, z: m, mm or um")->capture_default_str();
-  cmd->add_option("-o,--out", *out, "calibration JSON to write")->required();
+  cmd->add_option("-o,--out", *out, "calibration JSON to write")->required()->check(output_path());
   cmd->callback([cameras, out, unit] {
     std::map<std::string, recon::Camera> cams;
     std::map<std::string, double> rms;

@@ -68,7 +68,8 @@ void register_solve(CLI::App& app) {
                                     "result per line on standard output (or -o)");
   jsonl_opt->excludes(case_opt);
   case_opt->excludes(jsonl_opt);
-  cmd->add_option("-o,--output", *out_path, "write the result here (JSON) instead of standard output");
+  cmd->add_option("-o,--output", *out_path, "write the result here (JSON) instead of standard output")
+      ->check(output_path());
   cmd->callback([case_path, out_path, jsonl_path, case_opt, jsonl_opt] {
     if (*jsonl_opt) {
       std::ifstream file;

@@ -25,7 +25,7 @@ struct SynthArgs {
 void register_synth(CLI::App& app) {
   auto* cmd = app.add_subcommand("synth", "Write a synthetic trial: whisking against a peg with friction (docs/trials.md)");
   auto a = std::make_shared<SynthArgs>();
-  cmd->add_option("OUT", a->out, "output trial file (.csv, .h5/.hdf5 or .mat)")->required();
+  cmd->add_option("OUT", a->out, "output trial file (.csv, .h5/.hdf5 or .mat)")->required()->check(output_path());
   for (const trial::SynthParameter& p : trial::synth_parameters()) {
     std::string flag = "--" + p.name;
     std::replace(flag.begin(), flag.end(), '_', '-');

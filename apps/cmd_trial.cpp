@@ -46,7 +46,8 @@ void register_trial(CLI::App& app) {
   auto* cmd = app.add_subcommand("trial", "Analyse a whisking trial against a peg (spec §2.3-§3.4; docs/trials.md)");
   auto a = std::make_shared<TrialArgs>();
   cmd->add_option("TRIAL", a->trial, "trial file (.csv, .h5/.hdf5, .mat)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--out", a->out, "output directory (default: <trial name>_results next to the trial)");
+  cmd->add_option("--out", a->out, "output directory (default: <trial name>_results next to the trial)")
+      ->check(output_path());
   // Checked by trial::run_options (finite, >= 0) once given: nan is an error, never "not given".
   auto* mu_opt = cmd->add_option("--mu", a->mu, "also run frictional edge mode with this friction coefficient");
   auto* mu_eq7_opt =

@@ -23,6 +23,16 @@ inline CLI::Validator number_in(double lo, double hi) {
       "[" + format_value(lo) + ", " + format_value(hi) + "]");
 }
 
+/// An output path: an empty one is an error (issue 23: `-o ""` wrote to standard output and `trial --out ""` to
+/// the default folder, the option silently ignored).
+inline CLI::Validator output_path() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? std::string("must name a file or folder, got an empty path") : std::string();
+      },
+      "PATH");
+}
+
 void register_solve(CLI::App& app);
 void register_demo(CLI::App& app);
 void register_trial(CLI::App& app);

@@ -191,7 +191,7 @@ class SweepStore:
                     for index, message in failed:
                         messages[np.unravel_index(int(index), shape)] = message
                     error = f.create_variable("error", tuple(names), h5py.string_dtype())
-                    error.attrs.update({"long_name": "why the run failed (empty: it ran)"})
+                    error.attrs.update({"units": "1", "long_name": "why the run failed (empty: it ran)"})
                     error[...] = messages
             with h5py.File(tmp, "r+") as f:
                 for chunk in chunks:

@@ -227,4 +227,20 @@ st = r['status'] if isinstance(r['status'], str) else r['status'].get('name')
 print(st, r.get('residual'), r.get('force_W', r.get('force')), file=sys.stderr)
 sys.exit(0 if st == 'converged' or r.get('residual', 0) > 1e-6 else 1)"
 
+# Also (this session's hunt): the length given is the whisker's arc length, so a load at s = L is on it.
+case_with '{"length": 0.03, "curvature": 40}' '{"mode": "force", "force": 1e-4, "arc_length": 0.03}'
+run "$BIN" solve "$TMP/case.json"
+check L1 "length 0.03, curvature 40: a load at s = 0.03 is on the whisker" bash -c "[[ $RC -eq 0 ]] && grep -q '\"converged\"' $OUT"
+# An empty output path is an error, not standard output or the default folder.
+echo "$CASE" >"$TMP/ok.json"
+run "$BIN" solve "$TMP/ok.json" -o ""
+check O1 "solve -o '' refused" bash -c "$(declare -f clean_error); RC=$RC ERR=$ERR clean_error && grep -q 'empty path' $ERR"
+run "$BIN" synth ""
+check O2 "synth '' refused" bash -c "$(declare -f clean_error); RC=$RC ERR=$ERR clean_error && grep -q 'OUT: must name a file or folder, got an empty path' $ERR"
+# A mesh file that crashes assimp (a face index of -1) is an error naming object.file, not a crash.
+printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n0.01 -0.01 -0.01\n0.03 -0.01 -0.01\n0.01 0.01 -0.01\n0.01 -0.01 0.01\n3 0 1 2\n3 0 1 -1\n3 0 2 3\n3 1 2 3\n' >"$TMP/bad.ply"
+case_with '{"length": 0.03, "curvature": 20}' "{\"mode\": \"object\", \"object\": {\"type\": \"mesh\", \"file\": \"$TMP/bad.ply\"}}"
+run "$BIN" solve "$TMP/case.json"
+check M1 "a PLY that crashes assimp is an error naming object.file" bash -c "$(declare -f clean_error); RC=$RC ERR=$ERR clean_error && grep -q 'object.file: cannot read mesh' $ERR && ! grep -q ai_assert $ERR"
+
 exit $FAILED

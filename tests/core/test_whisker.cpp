@@ -38,6 +38,11 @@ TEST(Whisker, ParabolaHasRequestedArcLengthAndEqualLinks) {
       expect_equal_chords(v, 0.03);
       for (const auto& n : v.rest_nodes_B()) EXPECT_NEAR(n.y(), 40.0 * n.x() * n.x(), 1e-14);
     }
+  // Many links: each chord is exact to the rounding of its nodes' coordinates (~1e-12 of a 3 um chord); the
+  // sum drifts by about an ulp of the coordinates per node (docs/conventions.md): 1e-12 of L at 10,000 links.
+  p = WhiskerProperties{};
+  p.links = 10000;
+  EXPECT_NEAR(Whisker::from_parabola(0.03, 40.0, p).length(), 0.03, 1e-12 * 0.03);
   p = WhiskerProperties{};
   const Whisker v = Whisker::from_parabola(0.03, 40.0, p);
   EXPECT_EQ(solve_force(v, 1e-4, 0.03, 0.0).status, Status::converged);
