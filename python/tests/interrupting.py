@@ -8,7 +8,7 @@ import time
 import pytest
 
 
-def interrupt(call, delay, with_progress):
+def _interrupt_once(call, delay, with_progress):
     """Runs `call(progress)` and sends SIGINT to this process `delay` s after the call started (with_progress:
     after its first progress report, and the report seen then must be short of the total). Returns the
     seconds from the moment the signal was due to the KeyboardInterrupt (a call holding the GIL would also
@@ -49,3 +49,15 @@ def interrupt(call, delay, with_progress):
     except KeyboardInterrupt:
         pass
     pytest.fail("the call ended before the signal: make it longer")
+
+
+def interrupt(call, delay, with_progress, within=0.5, attempts=3):
+    """_interrupt_once up to `attempts` times until the latency is below `within` s; returns the smallest. A loaded
+    machine can keep this process off the cores for a while after the signal; a call that does not check for
+    signals runs to its end every time, so retrying cannot make it pass."""
+    best = float("inf")
+    for _ in range(attempts):
+        best = min(best, _interrupt_once(call, delay, with_progress))
+        if best < within:
+            break
+    return best
