@@ -33,7 +33,11 @@ Clearance whisker_clearance(const Whisker& w, const ObjectContact& o, const Solu
 struct Agreement {
   int cases = 0, same_status = 0, both_converged = 0, mesh_second = 0, mesh_slipped = 0;
   std::vector<double> force_error, point_error;  ///< relative force difference, contact point distance [m]
+  [[nodiscard]] double largest_point_error() const {
+    return point_error.empty() ? 0.0 : *std::max_element(point_error.begin(), point_error.end());
+  }
   [[nodiscard]] double median_force_error() const {
+    if (force_error.empty()) return 0.0;
     std::vector<double> e = force_error;
     std::nth_element(e.begin(), e.begin() + static_cast<std::ptrdiff_t>(e.size() / 2), e.end());
     return e[e.size() / 2];
@@ -94,7 +98,7 @@ void report(const char* what, const Mesh& mesh, const Agreement& g) {
   std::printf("%s, %zu triangles (longest edge %.3g mm): same status %d of %d, second contact %d, slipped off %d, "
               "median force difference %.3g, largest contact point distance %.3g mm\n",
               what, mesh.triangles().size(), 1e3 * mesh.longest_edge(), g.same_status, g.cases, g.mesh_second,
-              g.mesh_slipped, g.median_force_error(), 1e3 * *std::max_element(g.point_error.begin(), g.point_error.end()));
+              g.mesh_slipped, g.median_force_error(), 1e3 * g.largest_point_error());
 }
 
 }  // namespace
@@ -113,9 +117,10 @@ TEST(ObjectMeshAgreement, TessellatedSphereBehavesLikeTheSphere) {
     const Mesh mesh(tessellated_sphere(Eigen::Vector3d::Zero(), R, subdivisions));
     const Agreement g = compare(ball, mesh, 40, place);
     report("sphere", mesh, g);
+    ASSERT_GE(g.both_converged, g.cases / 2);
     EXPECT_GE(g.same_status, 0.9 * g.cases);  // (measured: 38 and 39 of 40; the issue asks for all)
     // The inscribed mesh lies inside the sphere by up to e^2 / (8 R): the contact point within a few of that.
-    EXPECT_LT(*std::max_element(g.point_error.begin(), g.point_error.end()), 3.0 * mesh.longest_edge());
+    EXPECT_LT(g.largest_point_error(), 3.0 * mesh.longest_edge());
     if (previous > 0.0) {  // edges halved: the difference a quarter at second order (measured 0.43 of it)
       EXPECT_LT(g.median_force_error(), 0.5 * previous) << "second order in the edge length";
     }
@@ -141,10 +146,11 @@ TEST(ObjectMeshAgreement, TessellatedCylinderBehavesLikeTheCylinder) {
   const Mesh mesh(tessellated_cylinder(base, R, length, 64, 16));
   const Agreement g = compare(peg, mesh, 40, place);
   report("cylinder", mesh, g);
+  ASSERT_GE(g.both_converged, g.cases / 2);
   // (measured: 33 of 40; the issue asks for all: docs/objects.md "Meshes against the analytic objects")
   EXPECT_GE(g.same_status, 0.8 * g.cases);
   // Along the axis the contact is fixed by the whisker's tangency alone (a facet is straight there, as the
   // cylinder): it moves with the facet's tilt about the whisker (measured up to 0.32 mm).
-  EXPECT_LT(*std::max_element(g.point_error.begin(), g.point_error.end()), 0.25 * R);
+  EXPECT_LT(g.largest_point_error(), 0.25 * R);
   EXPECT_LT(g.median_force_error(), 0.02);
 }
