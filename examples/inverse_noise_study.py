@@ -73,7 +73,8 @@ def monte_carlo(w, fracs, scales, signals, trials, rng):
     b = vibrissa.solve_base_wrench_batch(w, np.array(F), np.array(M), signals=signals, noise=noise_sd(signals))
     err = np.linalg.norm(b.contact_point_W - np.array(truth)[:, None, :], axis=-1)
     ok = b.converged
-    rms = np.sqrt(np.array([np.mean(e[k] ** 2) for e, k in zip(err, ok)]))
+    # A point where no trial converged has no error to average: NaN, left out of the figure.
+    rms = np.sqrt(np.array([np.mean(e[k] ** 2) if k.any() else np.nan for e, k in zip(err, ok)]))
     shape = (len(fracs), len(scales))
     return rms.reshape(shape), np.array(predicted).reshape(shape), ok.mean()
 

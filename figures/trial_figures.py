@@ -279,7 +279,7 @@ def friction_figure(d, summary, window):
         ax.fill_between(centers, means - sds, means + sds, color=style.OKABE_ITO["sky_blue"], alpha=0.3, lw=0,
                         label="± sd")
     ax.axvline(0.1, **style.IDENTITY, label="0.1 mN")
-    ax.set_xlim(0, style.data_limits(fn[ok])[1])
+    ax.set_xlim(0, max(style.data_limits(fn[ok])[1], 0.11))  # the 0.1 mN threshold stays in view
     ax.set_ylim(0, 3.1)
     ax.set_xlabel(style.label("normal force $F_N$", "mN"))
     ax.set_ylabel("μ")
@@ -307,7 +307,11 @@ def friction_figure(d, summary, window):
     ax.set_xlabel("μ")
     ax.set_ylabel("frames")
     ax.set_title("Fig. 3e: μ, outliers excluded\nwhole trial")
-    ax.legend(loc="upper right")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="upper right")
+    else:  # no frame passed the normal-force threshold: say so instead of an empty legend box
+        ax.text(0.5, 0.5, "no frame with\n$F_N$ ≥ 0.1 mN:\nμ not estimated",
+                transform=ax.transAxes, ha="center", va="center", fontsize=8)
     return fig
 
 

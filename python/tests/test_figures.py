@@ -286,3 +286,20 @@ def test_array_animation_views_fps_and_frames(cli, tmp_path):
     labels = [t.get_text() for t in anim.fig.legends[0].get_texts()]
     assert labels == ["free", "in contact", "pushed past", "object"]
     plt.close(anim.fig)
+
+
+def test_friction_figure_of_a_trial_without_usable_mu_says_so(tmp_path):
+    """A peg out of reach (docs/formats.md, "Nulls and their reasons"): no frame passes F_N >= 0.1 mN, so Fig. 3e
+    has nothing to draw; it says so instead of an empty legend box, and Fig. 3d keeps the threshold in view."""
+    trial = vibrissa.synthesize_trial(duration=0.5, peg_distance_mm=34.5)
+    result = vibrissa.analyze_trial(trial)
+    result.write(tmp_path)
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["friction"]["median"] is None
+    style.apply()
+    fig = trial_figures.build(trial_figures.load(tmp_path / "frames.h5"), summary)["fig3cde_friction.png"]
+    versus_force, hist = fig.axes[1], fig.axes[2]
+    assert hist.get_legend() is None
+    assert any("μ not estimated" in t.get_text() for t in hist.texts)
+    assert versus_force.get_xlim()[1] > 0.1
+    plt.close(fig)

@@ -291,6 +291,28 @@ def test_bad_sweeps_are_refused_before_anything_runs(tmp_path):
     assert not list(tmp_path.iterdir())
 
 
+def test_the_command_refuses_bad_files_and_flags_before_starting_a_cluster(tmp_path, capsys):
+    from vibrissa import sweeps
+    empty = tmp_path / "empty.json"
+    empty.write_text("")
+    bogus = tmp_path / "bogus.json"
+    bogus.write_text('{"kind": "bogus"}')
+    good = tmp_path / "good.json"
+    good.write_text('{"kind": "solve", "grid": {"load.point.0": [0.02]}}')
+    out = str(tmp_path / "out")
+    cases = [([str(empty)], "empty.json: not valid JSON"),
+             ([str(bogus)], "kind must be one of ['array', 'trial', 'solve'], got 'bogus'"),
+             ([str(good), "--out", out, "--workers", "0"], "workers must be a positive integer, got 0"),
+             ([str(good), "--out", out, "--chunk-size", "0"], "chunk_size must be a positive integer, got 0")]
+    for argv, message in cases:
+        assert sweeps.main(argv) == 1
+        captured = capsys.readouterr()
+        assert captured.out == ""  # refused before the banner: no cluster was started
+        first = captured.err.splitlines()[0]
+        assert first.startswith("vibrissa sweep: error: ") and message in first, first
+    assert not (tmp_path / "out").exists()
+
+
 REPO = pathlib.Path(__file__).resolve().parents[2]
 PACKAGE_PARENT = str(pathlib.Path(vibrissa.__file__).resolve().parents[1])
 

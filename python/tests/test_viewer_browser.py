@@ -200,6 +200,12 @@ def test_cli_view_writes_the_page(scene, tmp_path):
     assert 'id="vibrissa-meta"' in text and "THREE.OrbitControls" in text
     bad = subprocess.run([cli, "view", str(tmp_path / "nothing")], capture_output=True, text=True, timeout=60)
     assert bad.returncode == 1 and "nothing" in bad.stderr
+    folder = tmp_path / "a_folder"
+    folder.mkdir()
+    into = subprocess.run([cli, "view", str(pathlib.Path(scene["page"]).parent / "run"), "-o", str(folder)],
+                          capture_output=True, text=True, timeout=120)
+    assert into.returncode == 1 and f"cannot write '{folder}': it is a directory" in into.stderr, into.stderr
+    assert not list(tmp_path.glob(".tmp-*"))  # it left its temporary behind, named in a raw OSError, before
 
 
 def decode_blob(element):

@@ -324,6 +324,10 @@ def _progress_bar(stream):
     return show
 
 
+def _newline_after_bar():  # the progress bar is drawn on a terminal only: end its line there
+    return "\n" if sys.stderr.isatty() else ""
+
+
 def main(argv=None):
     """`vibrissa sweep CONFIG [--out DIR] [--scheduler ADDRESS|serial] [--workers N] [--chunk-size N]`."""
     import argparse
@@ -348,7 +352,10 @@ def main(argv=None):
 
     path = pathlib.Path(args.config)
     try:
-        config = json.loads(path.read_text())
+        try:
+            config = json.loads(path.read_text())
+        except json.JSONDecodeError as error:
+            raise ValueError(f"{path}: not valid JSON: {error}") from None
         if not isinstance(config, dict):
             raise ValueError("the sweep configuration must be a JSON object")
         known = {"kind", "base", "grid", "runs", "variables", "chunk_size", "out", "workers", "scheduler", "on_error"}
@@ -357,6 +364,8 @@ def main(argv=None):
             raise ValueError(f"unknown key(s) {unknown} (expected {sorted(known)})")
         if "kind" not in config:
             raise ValueError("missing key 'kind' (array, trial or solve)")
+        if config["kind"] not in KINDS:
+            raise ValueError(f"kind must be one of {list(KINDS)}, got {config['kind']!r}")
         base = config.get("base")
         if isinstance(base, str):
             base = path.parent / base
@@ -366,7 +375,11 @@ def main(argv=None):
         if args.out is None and config.get("out"):
             out = path.parent / config["out"]
         scheduler = args.scheduler or config.get("scheduler")
-        workers = args.workers or config.get("workers")
+        chunk_size = args.chunk_size if args.chunk_size is not None else config.get("chunk_size")
+        workers = args.workers if args.workers is not None else config.get("workers")
+        for name, value in (("workers", workers), ("chunk_size", chunk_size)):
+            if value is not None and (not isinstance(value, int) or isinstance(value, bool) or value < 1):
+                raise ValueError(f"{name} must be a positive integer, got {value!r}")
         total = len(_plan(config.get("grid"), config.get("runs"))[1])
         where = ("this process" if scheduler == "serial" else f"scheduler {scheduler}" if scheduler
                  else f"a local cluster of {workers or os.cpu_count()} worker processes")
@@ -374,14 +387,14 @@ def main(argv=None):
         started = time.monotonic()
         result = sweep(config["kind"], base, grid=config.get("grid"), runs=config.get("runs"), out=out,
                        variables=config.get("variables"), scheduler=scheduler, workers=workers,
-                       chunk_size=args.chunk_size or config.get("chunk_size"), progress=_progress_bar(sys.stderr),
+                       chunk_size=chunk_size, progress=_progress_bar(sys.stderr),
                        on_error=config.get("on_error", "record"))
     except KeyboardInterrupt:
         print(f"\nvibrissa sweep: interrupted; the finished chunks are in {out}: run the same command to resume",
               file=sys.stderr)
         return 130
     except (OSError, ValueError, TypeError, RuntimeError) as error:
-        print(f"\nvibrissa sweep: error: {error}", file=sys.stderr)
+        print(f"{_newline_after_bar()}vibrissa sweep: error: {error}", file=sys.stderr)
         return 1
     if sys.stderr.isatty():
         sys.stderr.write("\n")

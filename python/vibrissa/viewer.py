@@ -103,10 +103,15 @@ def _write_page(meta, blobs, out):
             raise ValueError(f"viewer page template lacks {key}")
         page = head + parts[key] + tail
     out = pathlib.Path(out)
+    if out.is_dir():
+        raise ValueError(f"cannot write '{out}': it is a directory")
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_name(f".tmp-{out.name}")
-    tmp.write_text(page, encoding="utf-8")
-    os.replace(tmp, out)  # atomic, as every output (docs/formats.md, "Atomic outputs")
+    try:
+        tmp.write_text(page, encoding="utf-8")
+        os.replace(tmp, out)  # atomic, as every output (docs/formats.md, "Atomic outputs")
+    finally:
+        tmp.unlink(missing_ok=True)  # no .tmp-* file is left behind, even when the write fails
     return out
 
 

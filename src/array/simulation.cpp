@@ -185,8 +185,8 @@ void validate(const SimulationConfig& c) {
   validate(c.head, "head");
   if (c.pitches.empty()) fail("head.pitches_deg must hold at least one pitch");
   for (std::size_t i = 0; i < c.pitches.size(); ++i)
-    if (!std::isfinite(c.pitches[i]))
-      fail("head.pitches_deg[" + std::to_string(i) + "] must be finite, got " + fmt(to_deg(c.pitches[i])));
+    if (!(std::abs(to_deg(c.pitches[i])) <= 180.0 + 1e-9))  // an angle: 1e300 deg is a typo, not a pose
+      fail("head.pitches_deg[" + std::to_string(i) + "] must lie in [-180, 180], got " + fmt(to_deg(c.pitches[i])));
   if (c.objects.empty()) fail("objects: the scene has no objects");
   if (c.times.size() < 2) fail("time.frames must be >= 2, got " + std::to_string(c.times.size()));
   for (std::size_t i = 0; i < c.times.size(); ++i) {

@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 #include <yaml-cpp/yaml.h>
 
+#include "text_cells.hpp"
 #include "vibrissa/trial/format.hpp"
 
 namespace vibrissa::recon {
@@ -146,8 +147,7 @@ std::map<std::string, Camera> read_anipose_toml(const std::string& path, const s
 }
 
 Camera read_opencv_storage(const std::string& path, const std::string& length_unit) {
-  std::ifstream in(path);
-  if (!in) fail(path, "cannot open calibration file");
+  std::ifstream in = open_input(path, "calibration file");
   std::stringstream buffer;
   buffer << in.rdbuf();
   std::string text = buffer.str();

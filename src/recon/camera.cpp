@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "text_cells.hpp"
 #include "vibrissa/io/json_file.hpp"
 #include "vibrissa/trial/format.hpp"
 
@@ -164,8 +165,7 @@ Eigen::MatrixXd matrix(const json& j, int rows, int cols, const std::string& whe
 }  // namespace
 
 std::map<std::string, Camera> read_cameras_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open calibration file");
+  std::ifstream in = open_input(path, "calibration file");
   json doc;
   try {
     doc = json::parse(in);

@@ -11,8 +11,7 @@ namespace vibrissa::recon {
 
 Correspondences read_correspondences_csv(const std::string& path, const std::string& length_unit) {
   const double Ls = trial::length_scale(length_unit, path + ": length unit");
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open correspondence file");
+  std::ifstream in = open_input(path, "correspondence file");
   static const std::vector<std::string> expected = {"x", "y", "z", "u_px", "v_px"};
   std::string line;
   std::size_t line_no = 0;

@@ -76,8 +76,7 @@ void append_dlc_frame(Tracks2D& t, std::int64_t frame, const std::vector<double>
 
 Tracks2D read_dlc_csv(const std::string& path, const std::vector<std::string>& bodyparts,
                       const std::string& individual) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open track file");
+  std::ifstream in = open_input(path, "track file");
   std::map<std::string, std::vector<std::string>> header;
   std::string line;
   std::size_t line_no = 0;

@@ -1,11 +1,20 @@
 #include "text_cells.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <stdexcept>
 
 namespace vibrissa::recon {
+
+std::ifstream open_input(const std::string& path, const std::string& what, std::ios::openmode mode) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw std::invalid_argument(path + ": is a directory, not a " + what);
+  std::ifstream in(path, mode);
+  if (!in) throw std::invalid_argument(path + ": cannot open " + what);
+  return in;
+}
 
 std::string cell_message(const std::string& path, std::size_t line, const std::string& field,
                          const std::string& message) {

@@ -2,6 +2,7 @@
 // Cells of the text track files (private to src/recon): numbers and indices with errors naming file, line
 // and field. Splitting and trimming are the library's CSV cells (src/io/csv_cells.hpp).
 #include <cstdint>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,10 @@ std::string cell_message(const std::string& path, std::size_t line, const std::s
                          const std::string& message);
 /// A number; empty and "nan" give NaN; anything else that is not a number throws naming file, line, field.
 double parse_cell(const std::string& cell, const std::string& path, std::size_t line, const std::string& field);
+/// The input file at `path`, open for reading; throws "path: is a directory, not a WHAT" or "path: cannot open
+/// WHAT" (a directory opens as an empty stream on Linux, which the readers took for an empty file).
+std::ifstream open_input(const std::string& path, const std::string& what,
+                         std::ios::openmode mode = std::ios::in);
 /// A non-negative integer (e.g. a frame index).
 std::int64_t parse_index(const std::string& cell, const std::string& path, std::size_t line, const std::string& field);
 

@@ -18,8 +18,7 @@ const TrackFrame* Tracks2D::find(std::int64_t frame) const {
 }
 
 Tracks2D read_points_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open track file");
+  std::ifstream in = open_input(path, "track file");
   std::string line;
   std::size_t line_no = 0;
   std::vector<std::string> header;
@@ -95,8 +94,7 @@ Tracks2D read_tracks(const std::string& path, const TrackSelection& sel) {
   if (ends_with(".h5") || ends_with(".hdf5"))  // libhdf5 meets the file in a child process first
     return io::guarded_read(path, "libhdf5", [&] { return read_dlc_h5(path, sel.bodyparts, sel.individual); });
   if (ends_with(".csv")) {
-    std::ifstream in(path);
-    if (!in) throw std::invalid_argument(path + ": cannot open track file");
+    std::ifstream in = open_input(path, "track file");
     std::string first;
     std::getline(in, first);
     const auto cells = split_cells(trim(first));

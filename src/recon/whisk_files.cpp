@@ -17,8 +17,7 @@ namespace vibrissa::recon {
 namespace {
 
 std::vector<char> read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path + ": cannot open file");
+  std::ifstream in = open_input(path, "track file", std::ios::in | std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 

@@ -251,6 +251,9 @@ TEST(ArrayConfig, InvalidConfigsNameTheField) {
   j["head"]["pitches_deg"] = {0, "NaN"};
   expect_config_error(j, "head.pitches_deg[1]");
   j = base_config();
+  j["head"]["pitches_deg"] = {-180, 1e300};  // --pitches=1e300 ran a meaningless pose before
+  expect_config_error(j, "head.pitches_deg[1] must lie in [-180, 180], got 1e+300");
+  j = base_config();
   j["head"]["pich_deg"] = 5;
   expect_config_error(j, "head.pich_deg");
   j = base_config();

@@ -7,11 +7,16 @@
 #include <numbers>
 #include <array>
 #include <iostream>
+#include <functional>
 #include <random>
+#include <stdexcept>
 
 #include "test_cameras.hpp"
 #include "vibrissa/core/pose.hpp"
+#include "vibrissa/recon/calibration_files.hpp"
+#include "vibrissa/recon/geometry.hpp"
 #include "vibrissa/recon/reconstruct.hpp"
+#include "vibrissa/recon/tracks.hpp"
 
 using namespace vibrissa;
 using namespace vibrissa::recon;
@@ -177,4 +182,24 @@ TEST(InputChecks, FramesMissingAnEndAreNearlyAsGoodAsIntactOnes) {
   for (std::size_t kind = 1; kind < 3; ++kind) {
     EXPECT_LT(rms(err[kind]), 1.5 * rms(err[0])) << kind;
   }
+}
+
+// A directory given for an input file opens as an empty stream on Linux: the readers said "the file is empty" or
+// leaked "basic_filebuf::underflow"; each now names the path and says it is a directory.
+TEST(InputFiles, ADirectoryIsNamedAsSuch) {
+  const std::string dir = ::testing::TempDir();
+  auto expect_directory_error = [&](const std::function<void()>& read, const std::string& what) {
+    try {
+      read();
+      ADD_FAILURE() << "no error for a directory as " << what;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()), dir + ": is a directory, not a " + what);
+    }
+  };
+  expect_directory_error([&] { read_cameras_json(dir); }, "calibration file");
+  expect_directory_error([&] { read_calibration("top=" + dir, "mm"); }, "calibration file");
+  expect_directory_error([&] { read_correspondences_csv(dir, "mm"); }, "correspondence file");
+  expect_directory_error([&] { read_points_csv(dir); }, "track file");
+  expect_directory_error([&] { read_dlc_csv(dir); }, "track file");
+  expect_directory_error([&] { read_whiskers(dir); }, "track file");
 }
