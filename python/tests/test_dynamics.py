@@ -105,3 +105,24 @@ def test_peg_release_example(tmp_path):
     assert done.returncode == 0, done.stderr
     assert "released:" in done.stdout
     assert (tmp_path / "out" / "dynamics.png").stat().st_size > 10_000
+
+
+def test_modes_about_a_peg_match_the_cli(cli, tmp_path):
+    # A peg held stuck (point mode) stiffens the whisker; Python and `vibrissa modes` give the same numbers.
+    load = {"mode": "point", "point": [0.02, 0.003, 0.0]}
+    case = tmp_path / "peg.json"
+    case.write_text(json.dumps({"whisker": CASE["whisker"], "dynamics": CASE["dynamics"], "load": load}))
+    done = subprocess.run([cli, "modes", str(case), "-n", "4", "-o", str(tmp_path / "modes.json")],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    from_cli = json.loads((tmp_path / "modes.json").read_text())
+    m = vibrissa.modes(whisker(), 4, load=load, damping_ratio=0.1)
+    np.testing.assert_array_equal(m.frequency, [x["frequency"] for x in from_cli["modes"]])
+    assert m.equilibrium["contact"] == "stick" and m.equilibrium["constraints"] == 3
+    assert from_cli["equilibrium"]["force_B"] == m.equilibrium["force_B"]
+    assert m.frequency[0] > 1.5 * vibrissa.modes(whisker(), 1).frequency[0]
+    slip = vibrissa.modes(whisker(), 4, load=load, contact="slip")
+    assert slip.equilibrium["constraints"] == 1 and slip.frequency[0] < m.frequency[0]
+    with pytest.raises(ValueError, match="contact"):
+        vibrissa.modes(whisker(), 4, load={"mode": "dead_load", "force": [0, 1e-5, 0], "arc_length": 0.02},
+                       contact="stick")

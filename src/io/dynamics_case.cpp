@@ -9,6 +9,7 @@
 #include <string>
 
 #include "csv_cells.hpp"
+#include "vibrissa/core/chain.hpp"
 #include "vibrissa/core/checks.hpp"
 #include "vibrissa/io/array_config.hpp"
 #include "vibrissa/io/atomic_file.hpp"
@@ -52,7 +53,7 @@ DynamicsCase dynamics_case_from_json(const json& j) {
 
 DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
   only_keys(j, "", {"whisker", "dynamics", "whisking", "initial", "duration", "output_rate", "relative_tolerance",
-                    "absolute_tolerance", "modes"});
+                    "absolute_tolerance", "modes", "load", "contact"});
   DynamicsCase c(whisker);
   if (j.contains("dynamics")) {
     const json& d = j.at("dynamics");
@@ -100,6 +101,19 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
   c.options.absolute_tolerance = number_or(j, "absolute_tolerance", "", c.options.absolute_tolerance);
   dynamics::validate(c.options);
   if (j.contains("modes")) c.mode_count = json_integer(j.at("modes"), "modes", 1, 100000);
+  if (j.contains("load")) {
+    c.load = load_from_json(j.at("load"));
+    if (std::holds_alternative<BaseWrenchLoad>(*c.load))
+      fail("load.mode \"base_wrench\" has no load to hold for modes: use force, dead_load, point, edge, "
+           "frictional_edge or object");
+  }
+  if (j.contains("contact")) {
+    if (!c.load) fail("\"contact\" needs a \"load\"");
+    const std::string m = json_string(j.at("contact"), "contact");
+    if (m == "stick") c.contact = dynamics::ContactModel::stick;
+    else if (m == "slip") c.contact = dynamics::ContactModel::slip;
+    else fail("contact must be \"stick\" or \"slip\", got " + quote_text(m));
+  }
   return c;
 }
 
@@ -128,6 +142,92 @@ dynamics::InitialState initial_state(const DynamicsCase& c, const dynamics::Line
     s.q_dot = Eigen::VectorXd::Zero(s.q.size());
   }
   return s;
+}
+
+CaseModes case_modes(const DynamicsCase& c, int count) {
+  CaseModes out;
+  const Whisker& w = c.whisker;
+  if (!c.load) {
+    out.modes = dynamics::modes(w, c.properties, count);
+    return out;
+  }
+  const Case sc{w, *c.load, SolveOptions{}, {}};
+  out.solution = solve_case(sc);
+  const Solution& sol = out.solution;
+  if (sol.status != Status::converged || sol.contact_state != ContactState::contact)
+    throw std::runtime_error("the load's quasi-static solve gave status " + std::string(to_string(sol.status)) +
+                             ", contact " + std::string(to_string(sol.contact_state)) +
+                             ": no equilibrium to take modes about");
+  const Eigen::Matrix3d R_BW = w.placement().R_WB.transpose();
+  dynamics::HeldLoad& h = out.held;
+  h.arc_length = sol.arc_length;
+  h.force_B = R_BW * sol.force_W;
+  h.contact_point_B = R_BW * (sol.contact_point_W - w.placement().p_W_base);
+  // How each load holds (docs/dynamics.md): forces keep their force; a point contact sticks; an edge or
+  // object contact slips unless the frictional solve stuck; "contact" overrides.
+  std::optional<Eigen::Vector3d> normal_W;
+  std::visit(
+      [&](const auto& l) {
+        using T = std::decay_t<decltype(l)>;
+        if constexpr (std::is_same_v<T, ForceLoad>) {
+          h.follower = true;
+        } else if constexpr (std::is_same_v<T, DeadLoad>) {
+          h.follower = false;
+        } else if constexpr (std::is_same_v<T, PointLoad>) {
+          h.contact = dynamics::ContactModel::stick;
+          normal_W = sol.force_W;
+        } else if constexpr (std::is_same_v<T, EdgeLoad> || std::is_same_v<T, FrictionalEdgeLoad>) {
+          h.contact = sol.friction == FrictionState::stick ? dynamics::ContactModel::stick : dynamics::ContactModel::slip;
+          const Eigen::Vector3d e = l.edge.direction.normalized();
+          normal_W = sol.force_W - sol.force_W.dot(e) * e;  // the edge's normal force
+        } else if constexpr (std::is_same_v<T, ObjectLoad>) {
+          h.contact = sol.friction == FrictionState::stick ? dynamics::ContactModel::stick : dynamics::ContactModel::slip;
+          normal_W = sol.surface ? sol.surface->normal_W : sol.force_W;
+        }
+      },
+      *c.load);
+  if (c.contact) {
+    if (h.contact == dynamics::ContactModel::none)
+      throw std::invalid_argument("\"contact\" applies to contact loads (point, edge, frictional_edge, object), "
+                                  "not to a force");
+    h.contact = *c.contact;
+  }
+  if (normal_W) {
+    if (!(normal_W->norm() > 0.0)) throw std::runtime_error("the contact force is zero: no contact normal for modes");
+    h.normal_B = R_BW * normal_W->normalized();
+  }
+  // Start Newton from the quasi-static solve's joint rotations (rest axes).
+  const std::size_t N = static_cast<std::size_t>(w.links());
+  std::vector<Eigen::Vector3d> omega_link(N, Eigen::Vector3d::Zero());
+  const LoadState& st = sol.state;
+  deflect<double>(w, V3<double>(st.force_x, st.force_y, st.force_z), V3<double>(st.couple_x, st.couple_y, st.couple_z),
+                  st.arc_length, omega_link.data());
+  dynamics::JointRotations start(N);
+  for (std::size_t j = 0; j < N; ++j) start[j] = w.rest_link_frames_B()[j] * omega_link[j];
+  out.deflected = dynamics::deflected_modes(w, c.properties, h, start, count);
+  out.modes = out.deflected->modes;
+  return out;
+}
+
+json equilibrium_to_json(const CaseModes& m, const Whisker& w) {
+  if (!m.deflected) return nullptr;
+  const dynamics::DeflectedModes& d = *m.deflected;
+  const auto vec = [](const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); };
+  json j;
+  j["arc_length"] = m.held.arc_length;
+  j["load"] = m.held.contact == dynamics::ContactModel::none ? (m.held.follower ? "follower" : "dead") : "contact";
+  j["contact"] = std::string(dynamics::to_string(m.held.contact));
+  if (m.held.contact == dynamics::ContactModel::slip) j["normal_B"] = vec(m.held.normal_B);
+  j["constraints"] = d.constraints;
+  j["force_B"] = vec(d.equilibrium.force_B);
+  j["contact_point_B"] = vec(d.equilibrium.contact_B);
+  j["quasi_static_force_B"] = vec(w.placement().R_WB.transpose() * m.solution.force_W);
+  j["tip_B"] = vec(dynamics::chain_nodes_B(w, d.equilibrium.omega).back());
+  j["newton_iterations"] = d.equilibrium.iterations;
+  j["relative_residual"] = d.equilibrium.residual;
+  j["stiffness_asymmetry"] = d.asymmetry;
+  j["largest_imaginary"] = d.largest_imaginary;
+  return j;
 }
 
 json modes_to_json(const dynamics::Modes& m, const Whisker& w, const DynamicsCase& c) {

@@ -53,6 +53,11 @@ struct LinkInertia {
 /// 3-point Gauss-Legendre quadrature of polynomials of degree <= 4 along the chord).
 std::vector<LinkInertia> link_inertias(const Whisker& whisker, double density);
 
+/// Mass matrix (3N x 3N) of rigid links in spatial joint increments (joint j turns every link distal to it about
+/// node j): links with mass properties `links` (centroids and inertias in B) and nodes `nodes_B` (N+1). The
+/// kinetic energy of the links under x' = sum_{j<=i} theta_j' x (x - p_j), assembled in O(N^2) from tail sums.
+Eigen::MatrixXd chain_mass_matrix(const std::vector<LinkInertia>& links, const std::vector<Eigen::Vector3d>& nodes_B);
+
 /// Size of u(t): acceleration of the base minus gravity (3), angular acceleration (3), the six independent
 /// entries of Omega Omega^T (xx, yy, zz, xy, xz, yz), all in B, SI.
 inline constexpr int base_input_size = 12;
