@@ -62,7 +62,8 @@ void register_dynamics(CLI::App& app) {
     const dynamics::LinearModel model = dynamics::linear_model(c.whisker, c.properties);
     const dynamics::Modes all = dynamics::modes(model, c.whisker);
     const dynamics::TimeSeries ts = dynamics::simulate(c.whisker, model, all, io::base_trajectory(c),
-                                                       c.properties.gravity_W, c.options, io::initial_state(c, model));
+                                                       c.properties.gravity_W, c.options, io::initial_state(c, model),
+                                                       io::external_load(c));
     const nlohmann::json summary = io::dynamics_summary(ts, all, c);
     io::write_dynamics_outputs(ts, summary, *out_dir);
     std::cout << summary.dump(2) << "\n";

@@ -71,7 +71,7 @@ void bind_dynamics(py::module_& m) {
         const dynamics::LinearModel model = dynamics::linear_model(c.whisker, c.properties);
         DynamicsRun run{{}, dynamics::modes(model, c.whisker), {}};
         run.series = dynamics::simulate(c.whisker, model, run.modes, io::base_trajectory(c), c.properties.gravity_W,
-                                        c.options, io::initial_state(c, model));
+                                        c.options, io::initial_state(c, model), io::external_load(c));
         run.summary = io::dynamics_summary(run.series, run.modes, c);
         return run;
       },

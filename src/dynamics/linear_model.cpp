@@ -59,6 +59,12 @@ void validate(const DynamicsProperties& p) {
   if (p.joint_damping_time && !(std::isfinite(*p.joint_damping_time) && *p.joint_damping_time >= 0.0))
     throw std::invalid_argument("dynamics.joint_damping_time must be >= 0 and finite [s], got " +
                                 format_value(*p.joint_damping_time));
+  if (!(std::isfinite(p.air.density) && p.air.density > 0.0))
+    throw std::invalid_argument("dynamics.air_density must be positive and finite [kg/m^3], got " +
+                                format_value(p.air.density));
+  if (!(std::isfinite(p.air.kinematic_viscosity) && p.air.kinematic_viscosity > 0.0))
+    throw std::invalid_argument("dynamics.air_kinematic_viscosity must be positive and finite [m^2/s], got " +
+                                format_value(p.air.kinematic_viscosity));
   if (!p.gravity_W.allFinite())
     throw std::invalid_argument("dynamics.gravity must be finite [m/s^2], got " + format_value(p.gravity_W));
 }

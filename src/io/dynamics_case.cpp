@@ -11,6 +11,7 @@
 #include "csv_cells.hpp"
 #include "vibrissa/core/chain.hpp"
 #include "vibrissa/core/checks.hpp"
+#include "vibrissa/dynamics/air_drag.hpp"
 #include "vibrissa/io/array_config.hpp"
 #include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/case_json.hpp"
@@ -57,7 +58,15 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
   DynamicsCase c(whisker);
   if (j.contains("dynamics")) {
     const json& d = j.at("dynamics");
-    only_keys(d, "dynamics", {"density", "damping_ratio", "joint_damping_time", "gravity"});
+    only_keys(d, "dynamics", {"density", "damping_ratio", "joint_damping_time", "gravity", "air_drag", "air_density",
+                              "air_kinematic_viscosity"});
+    if (d.contains("air_drag")) {
+      if (!d.at("air_drag").is_boolean()) fail("dynamics.air_drag must be true or false, got " + describe(d.at("air_drag")));
+      c.properties.air_drag = d.at("air_drag").get<bool>();
+    }
+    c.properties.air.density = number_or(d, "air_density", "dynamics", c.properties.air.density);
+    c.properties.air.kinematic_viscosity =
+        number_or(d, "air_kinematic_viscosity", "dynamics", c.properties.air.kinematic_viscosity);
     c.properties.density = number_or(d, "density", "dynamics", c.properties.density);
     if (d.contains("damping_ratio") && d.contains("joint_damping_time"))
       fail("dynamics needs at most one of \"damping_ratio\" and \"joint_damping_time\"");
@@ -121,6 +130,11 @@ dynamics::BaseTrajectory base_trajectory(const DynamicsCase& c) {
   const Pose pose = c.whisker.placement().pose();
   if (c.whisking) return whisking_trajectory(pose, *c.whisking);
   return dynamics::fixed_base(c.whisker.placement());
+}
+
+dynamics::ExternalLoad external_load(const DynamicsCase& c) {
+  if (!c.properties.air_drag) return {};
+  return dynamics::air_drag_load(c.whisker, base_trajectory(c), c.properties.air);
 }
 
 dynamics::InitialState initial_state(const DynamicsCase& c, const dynamics::LinearModel& model) {

@@ -22,6 +22,12 @@
 
 namespace vibrissa::dynamics {
 
+/// Air around a whisker (air_drag.hpp).
+struct AirProperties {
+  double density = 1.204;                 ///< [kg/m^3], dry air at 20 degC and 101.325 kPa
+  double kinematic_viscosity = 1.516e-5;  ///< [m^2/s], dry air at 20 degC (dynamic 1.825e-5 Pa s / density)
+};
+
 /// Material and damping of a whisker in motion. Defaults: docs/dynamics.md, "Parameters".
 struct DynamicsProperties {
   /// Density [kg/m^3]: keratin, about 1.3 g/cm^3 (the value used for whisker dynamics in the literature;
@@ -36,9 +42,14 @@ struct DynamicsProperties {
   std::optional<double> joint_damping_time;
   /// Gravity in the world frame [m/s^2]; zero by default (whiskers are light: docs/dynamics.md).
   Eigen::Vector3d gravity_W = Eigen::Vector3d::Zero();
+  /// Quadratic air drag on the links (air_drag.hpp); off by default (docs/dynamics.md, "Air drag": it changes the
+  /// base signals of whisking in air by a few per cent, and it is evaluated at the rigid base motion's velocity).
+  bool air_drag = false;
+  AirProperties air;
 };
 
-/// Throws std::invalid_argument naming the field and value for a non-positive density, a negative or
+/// Throws std::invalid_argument naming the field and value for a non-positive density (whisker or air), a
+/// non-positive air viscosity, a negative or
 /// non-finite damping ratio or damper time, or a non-finite gravity.
 void validate(const DynamicsProperties& props);
 

@@ -50,6 +50,8 @@ DynamicsCase dynamics_case_from_json(const nlohmann::json& j, const Whisker& whi
 
 /// The base trajectory of a case.
 dynamics::BaseTrajectory base_trajectory(const DynamicsCase& c);
+/// The case's air drag as simulate()'s external load (empty when dynamics.air_drag is off).
+dynamics::ExternalLoad external_load(const DynamicsCase& c);
 /// The initial state of a case (empty: equilibrium under the base motion at t = 0).
 dynamics::InitialState initial_state(const DynamicsCase& c, const dynamics::LinearModel& model);
 
