@@ -46,6 +46,28 @@ dynamics::BaseTrajectory whisking_trajectory(const Pose& pose, const Whisking& w
   });
 }
 
+dynamics::DynamicsProperties dynamics_properties_from_json(const json& d) {
+  dynamics::DynamicsProperties props;
+  only_keys(d, "dynamics", {"density", "damping_ratio", "joint_damping_time", "gravity", "air_drag", "air_density",
+                            "air_kinematic_viscosity"});
+  if (d.contains("air_drag")) {
+    if (!d.at("air_drag").is_boolean()) fail("dynamics.air_drag must be true or false, got " + describe(d.at("air_drag")));
+    props.air_drag = d.at("air_drag").get<bool>();
+  }
+  props.air.density = number_or(d, "air_density", "dynamics", props.air.density);
+  props.air.kinematic_viscosity =
+      number_or(d, "air_kinematic_viscosity", "dynamics", props.air.kinematic_viscosity);
+  props.density = number_or(d, "density", "dynamics", props.density);
+  if (d.contains("damping_ratio") && d.contains("joint_damping_time"))
+    fail("dynamics needs at most one of \"damping_ratio\" and \"joint_damping_time\"");
+  props.damping_ratio = number_or(d, "damping_ratio", "dynamics", props.damping_ratio);
+  if (d.contains("joint_damping_time"))
+    props.joint_damping_time = json_number(d.at("joint_damping_time"), "dynamics.joint_damping_time");
+  if (d.contains("gravity")) props.gravity_W = json_vec3(d.at("gravity"), "dynamics.gravity");
+  dynamics::validate(props);
+  return props;
+}
+
 DynamicsCase dynamics_case_from_json(const json& j) {
   if (!j.is_object()) fail("the case must be a JSON object, got " + describe(j));
   if (!j.contains("whisker")) fail("the case needs a \"whisker\" object");
@@ -56,25 +78,7 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
   only_keys(j, "", {"whisker", "dynamics", "whisking", "initial", "duration", "output_rate", "relative_tolerance",
                     "absolute_tolerance", "modes", "load", "contact"});
   DynamicsCase c(whisker);
-  if (j.contains("dynamics")) {
-    const json& d = j.at("dynamics");
-    only_keys(d, "dynamics", {"density", "damping_ratio", "joint_damping_time", "gravity", "air_drag", "air_density",
-                              "air_kinematic_viscosity"});
-    if (d.contains("air_drag")) {
-      if (!d.at("air_drag").is_boolean()) fail("dynamics.air_drag must be true or false, got " + describe(d.at("air_drag")));
-      c.properties.air_drag = d.at("air_drag").get<bool>();
-    }
-    c.properties.air.density = number_or(d, "air_density", "dynamics", c.properties.air.density);
-    c.properties.air.kinematic_viscosity =
-        number_or(d, "air_kinematic_viscosity", "dynamics", c.properties.air.kinematic_viscosity);
-    c.properties.density = number_or(d, "density", "dynamics", c.properties.density);
-    if (d.contains("damping_ratio") && d.contains("joint_damping_time"))
-      fail("dynamics needs at most one of \"damping_ratio\" and \"joint_damping_time\"");
-    c.properties.damping_ratio = number_or(d, "damping_ratio", "dynamics", c.properties.damping_ratio);
-    if (d.contains("joint_damping_time"))
-      c.properties.joint_damping_time = json_number(d.at("joint_damping_time"), "dynamics.joint_damping_time");
-    if (d.contains("gravity")) c.properties.gravity_W = json_vec3(d.at("gravity"), "dynamics.gravity");
-  }
+  if (j.contains("dynamics")) c.properties = dynamics_properties_from_json(j.at("dynamics"));
   dynamics::validate(c.properties);
   if (j.contains("whisking")) {
     const json& w = j.at("whisking");

@@ -42,6 +42,10 @@ struct DynamicsCase {
   std::optional<dynamics::ContactModel> contact;
 };
 
+/// The "dynamics" object of a case (or of an array config): density, damping_ratio | joint_damping_time, gravity,
+/// air_drag, air_density, air_kinematic_viscosity; errors name the field and value.
+dynamics::DynamicsProperties dynamics_properties_from_json(const nlohmann::json& d);
+
 /// Reads {"whisker": {...as in solve...}, "dynamics": {...}, "whisking": {...}, "initial": {...}, "duration",
 /// "output_rate", "relative_tolerance", "absolute_tolerance", "modes"}; errors name the field and value.
 DynamicsCase dynamics_case_from_json(const nlohmann::json& j);
