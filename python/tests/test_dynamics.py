@@ -126,3 +126,19 @@ def test_modes_about_a_peg_match_the_cli(cli, tmp_path):
     with pytest.raises(ValueError, match="contact"):
         vibrissa.modes(whisker(), 4, load={"mode": "dead_load", "force": [0, 1e-5, 0], "arc_length": 0.02},
                        contact="stick")
+
+
+def test_array_dynamics_in_air():
+    # simulate_array(dynamics=True) = `vibrissa array --dynamics`: every whisker whisks in air through the
+    # integrator; the base signals are inertial (nonzero), nothing touches, the tip displacement is added.
+    cfg = json.loads(vibrissa._vibrissa.default_array_config_json())
+    cfg["time"] = {"start_s": 0.0, "end_s": 0.0625, "frames": 126}
+    cfg["morphology"]["whiskers"] = ["C1", "D2"]
+    cfg["solver"]["links"] = 40
+    cfg["output"]["render_count"] = 0
+    r = vibrissa.simulate_array(cfg, dynamics=True)
+    assert r.summary["dynamics"]["in_air"] and r.summary["dynamics"]["steps"] > 0
+    assert r.tip_displacement_B.shape == (1, 2, 126, 3)
+    assert (r.state == 0).all() and r.MB.max() > 1e-9
+    quasi = vibrissa.simulate_array(cfg)
+    np.testing.assert_allclose(r.base_W, quasi.base_W, atol=1e-12)
