@@ -16,6 +16,7 @@
 #include "vibrissa/array/sweep.hpp"
 #include "vibrissa/core/limits.hpp"
 #include "vibrissa/io/array_config.hpp"
+#include "vibrissa/io/json_input.hpp"
 #include "vibrissa/io/array_outputs.hpp"
 #include "vibrissa/io/figure_files.hpp"
 
@@ -88,6 +89,7 @@ void register_array(CLI::App& app) {
     if (a->dynamics && !j.contains("dynamics")) j["dynamics"] = nlohmann::json::object();
     if (a->frames >= 0) j["output"]["render_count"] = a->frames;
     const fs::path base = a->config.empty() ? fs::current_path() : fs::path(a->config).parent_path();
+    j = io::resolve_input_paths(j, base);  // config.json names its files absolutely: it means the same anywhere
     const array::SimulationConfig config = io::array_config_from_json(j, base);
     const fs::path out(a->out);
     const std::size_t total = config.pitches.size() * config.morphology.whiskers.size() * config.times.size();

@@ -1,6 +1,7 @@
 // `vibrissa solve CASE.json [-o RESULT.json]`: one whisker, one load (docs/formats.md).
 // `vibrissa solve --jsonl FILE|-`: JSON Lines, one case per input line, one result per output line
 // (docs/formats.md, "JSON Lines batch").
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -85,7 +86,9 @@ void register_solve(CLI::App& app) {
       return;
     }
     if (!*case_opt) throw CLI::RequiredError("CASE or --jsonl");
-    const Case c = case_from_json(read_json_file(*case_path));
+    // files the case names (a mesh) are relative to the case file's folder (io::resolve_input_paths)
+    const Case c = case_from_json(io::resolve_input_paths(read_json_file(*case_path),
+                                                          std::filesystem::path(*case_path).parent_path()));
     const nlohmann::json result = solve_case_to_json(c);
     print_warnings(result, "");
     if (out_path->empty())

@@ -10,7 +10,7 @@ namespace vibrissa::cli {
 
 void register_view(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "view", "Write an interactive 3D viewer of an array or trial result: one HTML file (docs/viewer.md; `vibrissa view --help`)");
+      "view", "Write an interactive 3D viewer of an array, trial, solve or sweep result: one HTML file (docs/viewer.md; `vibrissa view --help`)");
   cmd->set_help_flag();  // the Python command prints its own help
   cmd->prefix_command();
   cmd->callback([cmd] {

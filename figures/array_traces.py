@@ -1,8 +1,11 @@
 #!/usr/bin/python3
-"""Base-signal traces per whisker (first head pitch): F_T, M_B, M_D, F_x and eq. (7) z_error while in
-contact, one line per whisker that touched the object, each in its own colour (style.distinct_styles). M_D is unwrapped
-within each contact. A `vibrissa array --dynamics` file (it has tip_displacement_B) is whisking in air: every whisker
-at every frame, F_T and F_x in µN, and the tip's displacement from rest instead of z_error.
+"""Base-signal traces per whisker (first head pitch): F_T, M_B, M_D, F_x and the magnitude of eq. (7)
+z_error while in contact, one line per whisker that touched the object, each in its own colour
+(style.distinct_styles). M_D is unwrapped within each contact. z_error is drawn as |z_error|: its sign,
+sgn(z_edge - z_onset), flips where edge mode's contact point passes the onset height, and the signed curve
+jumps there by twice the bound (the bound itself is continuous); the panel says so.
+A `vibrissa array --dynamics` file (it has tip_displacement_B) is whisking in air: every whisker at every frame,
+F_T and F_x in µN, and the tip's displacement from rest instead of z_error.
 
 usage: array_traces.py ARRAY_H5 OUT.png [--dpi DPI]
 """
@@ -12,7 +15,7 @@ import style
 from matplotlib import pyplot as plt
 
 ROWS = (("FT", "mN", "$F_T$"), ("MB", "µN·m", "$M_B$"), ("MD", "deg", "$M_D$"), ("Fx", "mN", "$F_x$"),
-        ("z_error", "mm", "eq. (7) $z_{error}$"))
+        ("z_error", "mm", "eq. (7) $|z_{error}|$"))
 DYNAMICS_ROWS = (("FT", "µN", "$F_T$"), ("MB", "µN·m", "$M_B$"), ("MD", "deg", "$M_D$"), ("Fx", "µN", "$F_x$"),
                  ("tip", "mm", "tip displacement"))
 SCALE = dict(style.SCALE, **{"µN": 1e6})
@@ -43,10 +46,15 @@ def build(d):
             y = d[name][w] * SCALE[unit]
             if name == "MD":
                 y = style.unwrap_deg(y, style.contact_runs(on))
+            elif name == "z_error":  # the magnitude: the sign term of eq. (7) flips (docstring)
+                y = np.abs(y)
             ax.plot(t, np.where(on, y, np.nan), lw=1.2, label=d["names"][w], **styles[k])
     for ax, (_, unit, quantity) in zip(axes, rows):
         ax.set_ylabel(style.label(quantity, unit))
     axes[-1].set_xlabel(style.label("time", "ms"))
+    if not d["dynamics"]:
+        axes[-1].set_title("magnitude of the bound; its sign, sgn($z_{edge} - z_{onset}$), is left out (it flips "
+                           "where the edge-mode contact passes the onset height)", fontsize=7, loc="left")
     what = (f"({len(touched)} whiskers, dynamics in air)" if d["dynamics"] else f"({len(touched)} whiskers touched)")
     axes[0].set_title(f"Base signals {'while whisking' if d['dynamics'] else 'during contact'}, head pitch "
                       f"{np.degrees(d['pitch']):+.0f}° {what}", pad=8 + 12 * ((len(touched) + 7) // 8))

@@ -11,7 +11,13 @@ cd "$(dirname "$0")/.."
 SRC="$PWD"
 BUILD="$(cd "${1:-build}" && pwd)"
 WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
+# pip's build of the package goes beside BUILD, at the same depth below the source tree and with BUILD's -Werror
+# setting, so its compiler commands equal BUILD's and a compiler cache (ccache with base_dir, as .ci/run sets it)
+# serves them instead of compiling the library a second time.
+WHEEL_BUILD="$(dirname "$BUILD")/.$(basename "$BUILD")-pip"
+WERROR="$(sed -n 's/^VIBRISSA_WERROR:BOOL=//p' "$BUILD/CMakeCache.txt")"
+rm -rf "$WHEEL_BUILD"
+trap 'rm -rf "$WORK" "$WHEEL_BUILD"' EXIT
 cd "$WORK"
 
 echo "=== 1. CMake package: install to a prefix, build an outside project ==="
@@ -26,7 +32,7 @@ echo "installed CLI: figures from $WORK/prefix/share/vibrissa/figures"
 
 echo "=== 2. pip install . into a fresh venv: the package and the vibrissa command ==="
 /usr/bin/python3 -m venv --system-site-packages "$WORK/venv"
-VIBRISSA_BUILD_DIR="$WORK/wheel-build" "$WORK/venv/bin/python" -m pip install --no-index --quiet "$SRC"  # all CPUs
+VIBRISSA_BUILD_DIR="$WHEEL_BUILD" VIBRISSA_CMAKE_ARGS="-DVIBRISSA_WERROR=${WERROR:-OFF}" "$WORK/venv/bin/python" -m pip install --no-index --quiet "$SRC"  # all CPUs
 mkdir "$WORK/elsewhere" && cd "$WORK/elsewhere"
 # Only what pip installed: the venv's bin first, no build tree, no figure scripts or CLI from outside.
 VENV=(env -u PYTHONPATH -u VIBRISSA_CLI -u VIBRISSA_FIGURES_DIR -u VIBRISSA_PYTHON

@@ -20,7 +20,7 @@ PACKAGES=(
   python3-numpy python3-matplotlib python3-pytest python3-h5py
   python3-pandas           # TrialResult.to_dataframe() in the Python package
   python3-xarray python3-h5netcdf python3-netcdf4   # to_xarray(), sweeps; every HDF5 output opens in xarray (both engines)
-  python3-distributed python3-dask python3-psutil    # vibrissa.sweep / `vibrissa sweep` on Dask; psutil: the sweep tests
+  python3-distributed python3-dask python3-psutil python3-cloudpickle  # vibrissa.sweep / `vibrissa sweep` on Dask; psutil, cloudpickle: the sweep tests
   ffmpeg                   # MP4 animations
   python3-venv python3-pip dpkg-dev   # install checks: pip into a venv, cpack -G DEB (dpkg-shlibdeps)
   clang-14 libclang-rt-14-dev libomp-14-dev   # libFuzzer harnesses (scripts/fuzz.sh)

@@ -2,7 +2,7 @@
 """Validation of `vibrissa reconstruct` against ground truth (docs/reconstruction.md, "Validation").
 
 A `vibrissa synth --shapes` trial (known 3D shapes, contact points and mu) is projected through two known
-pinhole cameras (with radial distortion). Per noise level: Gaussian pixel noise on every tracked point, 2 %
+pinhole cameras (with radial distortion), and for the three-camera comparison through a third (side). Per noise level: Gaussian pixel noise on every tracked point, 2 %
 of frames dropped in the front view, 5 % of points replaced by low-likelihood garbage, and 1 % of frames with
 a tracker identity swap in the front view (the neighbouring whisker, 2 mm higher). The top view is written as
 a plain CSV, the front view as a DeepLabCut CSV. `vibrissa reconstruct` rebuilds the trial, the errors are
@@ -26,12 +26,27 @@ CAMERAS = {  # K [px], R_CW, camera centre [m], k1, k2
     "front": (np.array([[2400.0, 0, 320], [0, 2400, 240], [0, 0, 1]]),
               np.array([[1.0, 0, 0], [0, 0, -1], [0, 1, 0]]), np.array([0.015, -0.3, 0.0]), 0.03, 0.0),
 }
+
+
+def look_at(C, target):
+    """R_CW of a camera at C looking at target (image x horizontal, y down)."""
+    z = (target - C) / np.linalg.norm(target - C)
+    x = np.cross([0.0, 0.0, 1.0], z)
+    x /= np.linalg.norm(x)
+    return np.stack([x, np.cross(z, x), z])
+
+
+# A third camera for the three-camera comparison: oblique, 0.3 m from the whisker, from below, behind and aside.
+_TARGET = np.array([0.015, 0.005, 0.0])
+_C_SIDE = _TARGET + 0.3 * np.array([-0.55, -0.55, -0.63]) / np.linalg.norm([-0.55, -0.55, -0.63])
+SIDE = (np.array([[2400.0, 0, 320], [0, 2400, 240], [0, 0, 1]]), look_at(_C_SIDE, _TARGET), _C_SIDE, 0.02, 0.0)
+CAMERAS3 = dict(CAMERAS, side=SIDE)
 POINTS_PER_VIEW = 25
 MU_TRUE = 0.48
 
 
 def project(name, P_W):
-    K, R, C, k1, k2 = CAMERAS[name]
+    K, R, C, k1, k2 = CAMERAS3[name]
     pc = (P_W - C) @ R.T
     n = pc[:, :2] / pc[:, 2:3]
     r2 = (n ** 2).sum(1, keepdims=True)
@@ -92,6 +107,23 @@ def write_views(truth, sigma, rng, out_dir, front_shift=0):
     return dropped, swapped, ends_lost
 
 
+def write_side(truth, sigma, rng, out_dir):
+    """The third view (plain CSV side.csv): the same noise and 5 % low-likelihood garbage points as the others,
+    no dropped frames or swaps; its own random stream, so the two-view data stay those of the tables above."""
+    rows = ["frame,point,x_px,y_px,likelihood"]
+    K = POINTS_PER_VIEW
+    for i, shape in enumerate(truth["shape"]):
+        pts = resample(shape[np.isfinite(shape[:, 0])], K)
+        px = project("side", pts) + rng.normal(0.0, sigma, (K, 2))
+        like = rng.uniform(0.9, 1.0, K)
+        bad = rng.random(K) < 0.05
+        px[bad] += rng.normal(0.0, 30.0, (bad.sum(), 2))
+        like[bad] = rng.uniform(0.0, 0.3, bad.sum())
+        rows += [f"{i},{k},{px[k,0]:.4f},{px[k,1]:.4f},{like[k]:.3f}" for k in range(K)]
+    with open(os.path.join(out_dir, "side.csv"), "w") as f:
+        f.write("\n".join(rows) + "\n")
+
+
 def calibration_json(path, cameras=None):
     cams = {}
     for name, (K, R, C, k1, k2) in (cameras or CAMERAS).items():
@@ -114,19 +146,19 @@ def rot_y(deg):
     return np.array([[c, 0, s], [0, 1.0, 0], [-s, 0, c]])
 
 
-def wrong_calibrations():
+def wrong_calibrations(cameras=CAMERAS):
     """The calibration errors users make: focal length 0.5 % off, a camera turned by 0.1 degree after
     calibrating, the lens distortion left out."""
     out = {}
-    K, R, C, k1, k2 = CAMERAS["front"]
+    K, R, C, k1, k2 = cameras["front"]
     Kf = K.copy()
     Kf[0, 0] *= 1.005
     Kf[1, 1] *= 1.005
-    out["front focal length +0.5 %"] = dict(CAMERAS, front=(Kf, R, C, k1, k2))
-    K, R, C, k1, k2 = CAMERAS["top"]
-    out["top camera turned 0.1° about its x axis (along the epipolar lines)"] = dict(CAMERAS, top=(K, rot_x(0.1) @ R, C, k1, k2))
-    out["top camera turned 0.1° about its y axis (across the epipolar lines)"] = dict(CAMERAS, top=(K, rot_y(0.1) @ R, C, k1, k2))
-    out["distortion omitted"] = {name: (K, R, C, 0.0, 0.0) for name, (K, R, C, _, _) in CAMERAS.items()}
+    out["front focal length +0.5 %"] = dict(cameras, front=(Kf, R, C, k1, k2))
+    K, R, C, k1, k2 = cameras["top"]
+    out["top camera turned 0.1° about its x axis (along the epipolar lines)"] = dict(cameras, top=(K, rot_x(0.1) @ R, C, k1, k2))
+    out["top camera turned 0.1° about its y axis (across the epipolar lines)"] = dict(cameras, top=(K, rot_y(0.1) @ R, C, k1, k2))
+    out["distortion omitted"] = {name: (K, R, C, 0.0, 0.0) for name, (K, R, C, _, _) in cameras.items()}
     return out
 
 
@@ -220,6 +252,48 @@ def inconsistent_inputs(a, truth, peg_mm, cal, names):
     return out
 
 
+def three_cameras(a, truth, peg_mm, names):
+    """Three cameras against two at 0.5 px: the errors of each pair and of all three on the same tracks, then
+    the calibration errors and swapped views of the two-view table with the third view added."""
+    d = os.path.join(a.out, "three")
+    os.makedirs(d, exist_ok=True)
+    dropped, swapped, _ = write_views(truth, 0.5, np.random.default_rng(a.seed), d)
+    write_side(truth, 0.5, np.random.default_rng(a.seed + 1000), d)
+    cal3 = os.path.join(d, "calibration3.json")
+    calibration_json(cal3, CAMERAS3)
+    files = {"top": os.path.join(d, "top.csv"), "front": os.path.join(d, "front_dlc.csv"),
+             "side": os.path.join(d, "side.csv")}
+    relaxed = ["--min-yield", "0", "--max-unpaired", "1", "--max-epipolar-px", "1e6", "--max-reprojection-px", "1e6"]
+
+    def run3(label, views, cal, k):
+        out = os.path.join(d, f"case{k}.h5")
+        cmd = [a.vibrissa, "reconstruct", *[x for n, f in views for x in ("--view", f"{n}={f}")], "--calibration", cal,
+               "--peg-mm", *[f"{v:.9g}" for v in peg_mm], "-o", out, "--report", out.replace(".h5", "_report.json")]
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        msg = " ".join(line.strip() for line in (r.stdout + r.stderr).splitlines() if line.strip().startswith("-"))
+        if r.returncode:
+            subprocess.run(cmd + relaxed, capture_output=True, text=True)
+        rec = load(out, names)
+        with open(out.replace(".h5", "_report.json")) as f:
+            report = json.load(f)
+        row = evaluate(truth, rec, dropped, swapped)
+        row.update(case=label, exit=r.returncode, message=msg,
+                   view_reprojection=report["checks"]["view_reprojection_px_median"])
+        print(json.dumps(row), file=sys.stderr)
+        return row
+
+    rows = []
+    for k, pair in enumerate((("top", "front"), ("top", "side"), ("front", "side"), ("top", "front", "side"))):
+        rows.append(run3(" + ".join(pair), [(n, files[n]) for n in pair], cal3, k))
+    for k, (label, cams) in enumerate(wrong_calibrations(CAMERAS3).items()):
+        path = os.path.join(d, f"cal3_{k}.json")
+        calibration_json(path, cams)
+        rows.append(run3(label, list(files.items()), path, 10 + k))
+    swapped_views = [("top", files["front"]), ("front", files["top"]), ("side", files["side"])]
+    rows.append(run3("top and front views swapped", swapped_views, cal3, 20))
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--vibrissa", default="build/bin/vibrissa")
@@ -229,6 +303,7 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--figure", default="")
     ap.add_argument("--reconstruct-args", default="", help="extra options for vibrissa reconstruct, e.g. '--fit-segments 8'")
+    ap.add_argument("--only-three", action="store_true", help="only the three-camera comparison (no noise sweep, no checks)")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     syn = os.path.join(a.out, "synth.h5")
@@ -241,6 +316,8 @@ def main():
     calibration_json(cal)
     mu_truth_trial = mu_of(a.vibrissa, syn, os.path.join(a.out, "truth_results"))
     rows = []
+    if a.only_three:
+        a.noise = []
     for sigma in a.noise:
         d = os.path.join(a.out, f"noise_{sigma:g}px")
         os.makedirs(d, exist_ok=True)
@@ -263,10 +340,11 @@ def main():
         row["mu"] = mu_of(a.vibrissa, rec_path, os.path.join(d, "results"))
         rows.append(row)
         print(json.dumps(row), file=sys.stderr)
-    checks = inconsistent_inputs(a, truth, peg_mm, cal, names)
+    checks = [] if a.only_three else inconsistent_inputs(a, truth, peg_mm, cal, names)
+    three = three_cameras(a, truth, peg_mm, names)
     with open(os.path.join(a.out, "validation.json"), "w") as f:
-        json.dump({"mu_true": MU_TRUE, "mu_from_true_trial": mu_truth_trial, "rows": rows, "checks": checks}, f,
-                  indent=1)
+        json.dump({"mu_true": MU_TRUE, "mu_from_true_trial": mu_truth_trial, "rows": rows, "checks": checks,
+                   "three_cameras": three}, f, indent=1)
     print(f"truth: mu = {MU_TRUE}; `vibrissa trial` on the synthetic trial itself: median mu = {mu_truth_trial:.4f}")
     print("| noise [px] | reconstructed | dropped flagged | swaps flagged | base [µm] median / p95 | θ [°] median / p95 "
           "| φ [°] median / p95 | ζ free [°] median / p95 | contact point [µm] median / p95 | contact missed / extra "
@@ -293,6 +371,17 @@ def main():
         msg = c["message"].replace("|", "/").replace("\n", " ")
         print(f"| {c['case']} | {c['exit']} | {c['reconstructed']} | {c['reprojection_px_median']:.2f} "
               f"| {c['base_um_median']:.0f} | {msg} |")
+    print()
+    print("| views (0.5 px noise) | exit | reconstructed | base [µm] median / p95 | θ [°] median / p95 "
+          "| φ [°] median / p95 | reprojection [px] median: all (per view) | message |")
+    print("|---|---|---|---|---|---|---|---|")
+    for r in three:
+        per_view = ", ".join(f"{n} {v:.2f}" if v is not None else f"{n} -" for n, v in r["view_reprojection"].items())
+        msg = r["message"].replace("|", "/")
+        print(f"| {r['case']} | {r['exit']} | {r['reconstructed']}/{r['frames']} "
+              f"| {r['base_um_median']:.1f} / {r['base_um_p95']:.1f} | {r['theta_deg_median']:.2f} / {r['theta_deg_p95']:.2f} "
+              f"| {r['phi_deg_median']:.2f} / {r['phi_deg_p95']:.2f} | {r['reprojection_px_median']:.2f} ({per_view}) "
+              f"| {msg} |")
     if a.figure:
         import matplotlib
         matplotlib.use("Agg")

@@ -36,6 +36,9 @@
   }
 
   const nW = meta.whiskers.length, nT = meta.times.length, K = meta.nodes, nS = meta.signals.length;
+  // The slider's axis: time by default; a sweep of solves steps through the values of its last parameter.
+  const axis = meta.frame_axis || { label: "t", unit: "ms", scale: 1e3 };
+  const axisText = (t, digits) => `${(meta.times[t] * axis.scale).toFixed(digits)}${axis.unit ? " " + axis.unit : ""}`;
   const STATE_COLOURS = ["#9a9a9a", "#D55E00", "#0072B2"];  // free, contact, pushed past (figures/style.py)
   // cividis-like sequential map (dark blue -> yellow), monotonic in lightness.
   const CMAP = [[0.0, 0x00, 0x22, 0x4e], [0.25, 0x3b, 0x49, 0x6c], [0.5, 0x7c, 0x7b, 0x78], [0.75, 0xbc, 0xaf, 0x6f],
@@ -89,6 +92,23 @@
   contactDots.geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(nW * 3), 3));
   contactDots.frustumCulled = false;
   scene.add(contactDots);
+  // Rest shapes (a solve: the undeflected whisker) as thin grey lines, per group.
+  const restLines = [];
+  if (meta.rest) for (let w = 0; w < nW; w++) {
+    const l = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineDashedMaterial({ color: 0x777777, dashSize: 0.4, gapSize: 0.3 }));
+    l.geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(K * 3), 3));
+    l.frustumCulled = false;
+    scene.add(l);
+    restLines.push(l);
+  }
+  // Arrows (a solve: the contact force at the contact point, the force and moment at the base): per group a
+  // blob [arrow][frame][6] of origin and drawn vector [mm]; their lengths are scaled, the values are in the table.
+  const arrows = (meta.arrows || []).map((a) => {
+    const h = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, new THREE.Color(a.colour).getHex());
+    h.frustumCulled = false;
+    scene.add(h);
+    return h;
+  });
   const selectedLine = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x000000 }));
   selectedLine.geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(K * 3), 3));
   selectedLine.frustumCulled = false;
@@ -122,10 +142,16 @@
   // ---- data of the shown group (head pitch) --------------------------------------------------------------
   async function groupData() {
     const g = meta.groups[state.group];
-    const [shapes, st, signals, contact, edges, poses] = await Promise.all([
+    const [shapes, st, signals, contact, edges, poses, rest, arrowData] = await Promise.all([
       blob(g.shapes), blob(g.state), blob(g.signals), blob(g.contact), meta.edges ? blob(g.edges) : null,
-      meta.objects.length ? blob(g.object_poses) : null]);
-    return { shapes, state: st, signals, contact, edges, poses, ranges: g.ranges };
+      meta.objects.length ? blob(g.object_poses) : null, g.rest ? blob(g.rest) : null,
+      g.arrows ? blob(g.arrows) : null]);
+    restLines.forEach((l, w) => {
+      l.geometry.attributes.position.array.set(rest.subarray(w * K * 3, (w + 1) * K * 3));
+      l.geometry.attributes.position.needsUpdate = true;
+      l.computeLineDistances();
+    });
+    return { shapes, state: st, signals, contact, edges, poses, ranges: g.ranges, arrows: arrowData, table: g.table };
   }
   let data = await groupData();
 
@@ -170,6 +196,14 @@
       m.scale.set(1, Math.max(len, 1e-6), 1);
       m.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), d.normalize());
     }
+    arrows.forEach((h, a) => {
+      const o = (a * nT + t) * 6, v = new THREE.Vector3().fromArray(data.arrows, o + 3), len = v.length();
+      h.visible = Number.isFinite(len) && len > 1e-9;
+      if (!h.visible) return;
+      h.position.fromArray(data.arrows, o);
+      h.setDirection(v.normalize());
+      h.setLength(len, 0.25 * len, 0.12 * len);
+    });
     objectMeshes.forEach((m, i) => {
       const p = data.poses.subarray((t * objectMeshes.length + i) * 12, (t * objectMeshes.length + i + 1) * 12);
       m.matrix.set(p[0], p[1], p[2], p[9], p[3], p[4], p[5], p[10], p[6], p[7], p[8], p[11], 0, 0, 0, 1);
@@ -256,8 +290,10 @@
       g.textAlign = "right";
       g.fillText(hi.toPrecision(3), m.l - 3, m.t + 9); g.fillText(lo.toPrecision(3), m.l - 3, m.t + ph);
       g.textAlign = "left";
-      g.fillText(`${(t0 * 1e3).toFixed(0)} ms`, m.l, H - 4);
-      g.textAlign = "right"; g.fillText(`${(t1 * 1e3).toFixed(0)} ms`, m.l + pw, H - 4); g.textAlign = "left";
+      g.fillText(axisText(0, axis.digits === undefined ? 0 : axis.digits), m.l, H - 4);
+      if (meta.frame_axis) { g.textAlign = "center"; g.fillText(axis.label, m.l + pw / 2, H - 4); }  // not time: name it
+      g.textAlign = "right"; g.fillText(axisText(nT - 1, axis.digits === undefined ? 0 : axis.digits), m.l + pw, H - 4);
+      g.textAlign = "left";
       g.strokeStyle = "#0072B2"; g.lineWidth = 1.5; g.beginPath();
       let pen = false;
       for (let t = 0; t < nT; t++) {
@@ -272,6 +308,17 @@
     });
     const st = meta.state_names[data.state[w * nT + state.frame]];
     info.textContent = `${meta.whisker_label} ${meta.whiskers[w]} (${st}) — ${meta.title}`;
+    if (data.table) {  // a solve: its numbers (the group's, or the shown frame's when they change with it)
+      const rows = data.table.length === nT && Array.isArray(data.table[0][0]) ? data.table[state.frame] : data.table;
+      const tbl = document.createElement("table");
+      tbl.id = "values";
+      for (const [k, v] of rows) {
+        const tr = tbl.insertRow();
+        tr.insertCell().textContent = k;
+        tr.insertCell().textContent = v;
+      }
+      info.appendChild(tbl);
+    }
   }
 
   // ---- controls ------------------------------------------------------------------------------------------
@@ -279,12 +326,54 @@
   const pitchSel = document.getElementById("pitch"), colourSel = document.getElementById("colour");
   const whiskerSel = document.getElementById("whisker"), playBtn = document.getElementById("play");
   slider.max = String(nT - 1);
-  meta.groups.forEach((g, i) => pitchSel.add(new Option(g.label, String(i))));
-  if (meta.groups.length < 2) document.getElementById("pitch-box").style.display = "none";
-  document.getElementById("pitch-box").firstChild.textContent = meta.group_label + " ";
+  // The groups (head pitches; a sweep's runs) are a grid: one list per dimension, the group index their
+  // C-order ravel. Without meta.group_dims, one list of the groups' labels.
+  const dims = meta.group_dims || [{ label: meta.group_label, values: meta.groups.map((g) => g.label) }];
+  const dimSels = dims.map((d, i) => {
+    const sel = i === 0 ? pitchSel : document.createElement("select");
+    sel.dataset.dim = String(i);
+    sel.id = i === 0 ? "pitch" : `dim-${i}`;
+    d.values.forEach((v, j) => sel.add(new Option(v, String(j))));
+    if (i === 0) {
+      document.getElementById("pitch-box").firstChild.textContent = d.label + " ";
+      if (d.values.length < 2 && dims.length === 1) document.getElementById("pitch-box").style.display = "none";
+    } else {
+      const label = document.createElement("label");
+      label.className = "dim-box";
+      label.append(d.label + " ", sel);
+      document.getElementById("pitch-box").after(label);
+    }
+    return sel;
+  });
+  // keep the lists' order in the bar: dimension 0 first
+  for (let i = dimSels.length - 1; i > 0; i--) document.getElementById("pitch-box").after(dimSels[i].parentElement);
+  function groupOfSelects() { return dimSels.reduce((g, s, i) => g * dims[i].values.length + +s.value, 0); }
+  function selectsOfGroup(g) {
+    for (let i = dims.length - 1; i >= 0; i--) { dimSels[i].value = String(g % dims[i].values.length); g = Math.floor(g / dims[i].values.length); }
+  }
+  if (nT < 2) {  // one frame (a single solve): no slider, no play, no plots over time
+    for (const id of ["play", "slider", "time"]) document.getElementById(id).style.display = "none";
+    document.getElementById("plots").style.display = "none";
+  }
   meta.colour_by.forEach((c, i) => colourSel.add(new Option(c.label, String(i))));
   meta.whiskers.forEach((n, i) => whiskerSel.add(new Option(n, String(i))));
   whiskerSel.value = String(state.selected);
+  if (nW < 2) whiskerSel.parentElement.style.display = "none";
+  if (meta.arrows && meta.arrows.length) {  // the arrows' key, under the colour scale
+    const key = document.createElement("div");
+    key.id = "arrow-key";
+    for (const a of meta.arrows) {
+      const row = document.createElement("div"), mark = document.createElement("span");
+      mark.textContent = "\u2192 "; mark.style.color = a.colour; mark.style.fontWeight = "bold";
+      row.append(mark, a.label);
+      key.appendChild(row);
+    }
+    const note = document.createElement("div");
+    note.textContent = "arrows: direction; length scaled (values in the table)";
+    note.style.color = "#666";
+    key.appendChild(note);
+    document.getElementById("legend").appendChild(key);
+  }
 
   function updateLegend() {
     const c = meta.colour_by[state.colour], bar = document.getElementById("legend-bar"), g = bar.getContext("2d");
@@ -305,7 +394,7 @@
   function setFrame(t) {
     state.frame = Math.max(0, Math.min(nT - 1, t | 0));
     slider.value = String(state.frame);
-    timeEl.textContent = `t = ${(meta.times[state.frame] * 1e3).toFixed(1)} ms (frame ${state.frame + 1}/${nT})`;
+    timeEl.textContent = `${axis.label} = ${axisText(state.frame, axis.digits === undefined ? 1 : axis.digits)} (frame ${state.frame + 1}/${nT})`;
     loadFrame(state.frame);
     drawPlots();
     render();
@@ -316,12 +405,12 @@
     setFrame(state.frame);
   }
   async function setGroup(i) {
-    state.group = i; pitchSel.value = String(i);
+    state.group = i; selectsOfGroup(i);
     data = await groupData();
     updateLegend(); setFrame(state.frame);
   }
   slider.addEventListener("input", () => setFrame(+slider.value));
-  pitchSel.addEventListener("change", () => setGroup(+pitchSel.value));
+  dimSels.forEach((s) => s.addEventListener("change", () => setGroup(groupOfSelects())));
   colourSel.addEventListener("change", () => { state.colour = +colourSel.value; updateLegend(); setFrame(state.frame); });
   whiskerSel.addEventListener("change", () => select(+whiskerSel.value));
   let last = 0;
@@ -351,6 +440,7 @@
 
   window.addEventListener("resize", resize);
   frameCamera();
+  selectsOfGroup(0);
   updateLegend();
   setFrame(meta.initial_frame || 0);
   resize();
@@ -369,6 +459,8 @@
       return [r.left + ((v.x + 1) / 2) * r.width, r.top + ((1 - v.y) / 2) * r.height];
     },
     centreLine(w) { return Array.from(whiskerPositions[w]); },
+    signal(s, w, t) { return signalAt(s, w, t); },
+    arrow(a) { const h = arrows[a]; return h.visible ? { origin: h.position.toArray(), direction: new THREE.Vector3(0, 1, 0).applyQuaternion(h.quaternion).toArray() } : null; },
     screenNodes() {
       const out = [];
       for (let w = 0; w < nW; w++) { const line = []; for (let k = 0; k < K; k++) line.push(this.nodeOnScreen(w, k)); out.push(line); }

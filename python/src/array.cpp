@@ -51,6 +51,15 @@ void bind_array(py::module_& m) {
       [](const std::string& text) { (void)io::array_config_from_json(parse_config(text), std::filesystem::current_path()); },
       "Reads an array configuration as simulate_array would, without simulating: ValueError naming the field.");
 
+  m.def(
+      "_resolve_input_paths",
+      [](const std::string& text, const std::string& base_dir) {
+        return io::resolve_input_paths(io::parse_json_text(text, "configuration"), base_dir).dump();
+      },
+      py::arg("text"), py::arg("base_dir"),
+      "The JSON text with the files it names (morphology table, meshes) made absolute against base_dir: the "
+      "readers' one rule (io::resolve_input_paths, docs/formats.md \"Paths\").");
+
   m.def("default_array_config_json", [] { return io::default_array_config_json().dump(); },
         "The built-in configuration of `vibrissa array` as JSON text (= --print-default-config).");
 
@@ -67,6 +76,8 @@ void bind_array(py::module_& m) {
         } else {
           run.config_json = config_text ? parse_config(*config_text) : io::default_array_config_json();
         }
+        // config.json (ArrayResult.write) names its files absolutely, as `vibrissa array` writes it
+        run.config_json = io::resolve_input_paths(run.config_json, base);
         if (!threads.is_none()) {
           const int n = thread_count_arg(threads, 0);
           if (n > 0) run.config_json["threads"] = n;

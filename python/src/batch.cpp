@@ -278,6 +278,21 @@ void store(const Outputs::Raw& r, py::ssize_t i, const Solution& s) {
   }
 }
 
+/// Status code of a frame whose input was refused (one past the C++ Status values; vibrissa.batch's
+/// STATUS_NAMES names it "invalid_input"): its numbers are NaN and its message is in the result's "error".
+constexpr std::int32_t kInvalidInputStatus = static_cast<std::int32_t>(Status::underdetermined) + 1;
+
+void store_failed(const Outputs::Raw& r, py::ssize_t i) {
+  auto nan3 = [i](double* dst) { std::fill(dst + 3 * i, dst + 3 * i + 3, kNaN); };
+  r.status[i] = kInvalidInputStatus;
+  r.iterations[i] = 0;
+  r.force_magnitude[i] = r.arc_length[i] = r.angle[i] = kNaN;
+  nan3(r.contact_point), nan3(r.force), nan3(r.moment), nan3(r.wf_force), nan3(r.wf_moment);
+  r.FT[i] = r.MB[i] = r.FD[i] = r.MD[i] = r.normal_force[i] = r.edge_force[i] = r.residual[i] = kNaN;
+  std::fill(r.state + 4 * i, r.state + 4 * i + 4, kNaN);
+  if (r.shape) std::fill(r.shape + 3 * r.nodes * i, r.shape + 3 * r.nodes * (i + 1), kNaN);
+}
+
 /// Per-frame placement: the whisker's own placement, overridden by (base, angles) when either is given.
 struct Poses {
   Field base, angles;
@@ -325,9 +340,16 @@ py::dict run_batch(const Layout& L, const Whiskers& ws, const SeriesTracking* tr
   const Outputs::Raw raw = out.raw();
   const py::ssize_t S = L.series, F = L.frames;
   const py::ssize_t items = tracked ? S : S * F;
-  std::string error;
-  bool error_is_value = true;
-  py::ssize_t error_item = items;
+  // Every frame is solved: a frame whose solve throws (invalid input) is recorded, NaN with its message, and
+  // the batch goes on (a tracked series with its next frame). vibrissa.batch raises the first one for
+  // on_error="raise".
+  std::vector<std::string> errors(static_cast<std::size_t>(S * F));
+  std::vector<unsigned char> error_is_value(errors.size(), 1);
+  auto record = [&](py::ssize_t i, const std::exception& e) {
+    store_failed(raw, i);
+    errors[static_cast<std::size_t>(i)] = e.what();
+    error_is_value[static_cast<std::size_t>(i)] = dynamic_cast<const std::invalid_argument*>(&e) != nullptr;
+  };
   // On a worker thread with the GIL released; Ctrl-C or an exception from `progress` cancels between frames.
   run_interruptible(
       [&](const RunControl& control) {
@@ -343,39 +365,48 @@ py::dict run_batch(const Layout& L, const Whiskers& ws, const SeriesTracking* tr
               std::optional<EdgeSegment> segment;
               for (py::ssize_t f = 0; f < F; ++f) {
                 counter.check();
-                TrackedInput input;
-                tracked->frame_input(s, f, X, segment, input);
-                store(raw, s * F + f, tracker.step_tracked(X, segment ? &*segment : nullptr, input).solution);
+                try {
+                  TrackedInput input;
+                  tracked->frame_input(s, f, X, segment, input);
+                  store(raw, s * F + f, tracker.step_tracked(X, segment ? &*segment : nullptr, input).solution);
+                } catch (const Cancelled&) {
+                  throw;
+                } catch (const std::exception& e) {
+                  record(s * F + f, e);
+                }
                 counter.advance();
               }
             } else {
               counter.check();
-              store(raw, item, solve_one(item / F, item % F));
+              try {
+                store(raw, item, solve_one(item / F, item % F));
+              } catch (const Cancelled&) {
+                throw;
+              } catch (const std::exception& e) {
+                record(item, e);
+              }
               counter.advance();
             }
           } catch (const Cancelled&) {
             cancelled = true;
-          } catch (const std::exception& e) {
-#pragma omp critical(vibrissa_batch_error)
-            if (item < error_item) {  // report the first failing item, whatever the thread order
-              error_item = item;
-              error = e.what();
-              error_is_value = dynamic_cast<const std::invalid_argument*>(&e) != nullptr;
-            }
           }
         }
         if (cancelled) throw Cancelled();
         return 0;
       },
       progress);
-  if (error_item < items) {
-    const std::string where = tracked ? "series " + std::to_string(error_item)
-                                      : "series " + std::to_string(error_item / F) + ", frame " +
-                                            std::to_string(error_item % F);
-    if (error_is_value) throw py::value_error(error + " (" + where + ")");
-    throw std::runtime_error(error + " (" + where + ")");
+  py::dict d = out.to_dict();
+  py::list messages;
+  py::list kinds;
+  for (std::size_t i = 0; i < errors.size(); ++i) {
+    if (errors[i].empty()) continue;
+    const py::ssize_t item = static_cast<py::ssize_t>(i);
+    messages.append(py::make_tuple(item / F, item % F, errors[i]));
+    kinds.append(error_is_value[i] ? "ValueError" : "RuntimeError");
   }
-  return out.to_dict();
+  d["errors"] = messages;
+  d["error_kinds"] = kinds;
+  return d;
 }
 
 /// The edge of frame (s, f): a point and an optional direction (default world +z).

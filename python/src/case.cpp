@@ -3,6 +3,8 @@
 // receives JSON text back; the pure-Python layer turns it into dicts and arrays.
 #include <pybind11/stl.h>
 
+#include <filesystem>
+
 #include "bindings.hpp"
 #include "vibrissa/io/object_json.hpp"
 #include "convert.hpp"
@@ -115,7 +117,11 @@ void bind_case(py::module_& m) {
           "from_json", [](const std::string& text) { return case_from_json(parse(text, "case")); }, py::arg("text"),
           "Parses a case from JSON text; ValueError naming the field for an invalid case.")
       .def_static(
-          "from_file", [](const std::string& path) { return case_from_json(read_json_file(path)); }, py::arg("path"),
+          "from_file",
+          [](const std::string& path) {
+            return case_from_json(io::resolve_input_paths(read_json_file(path), std::filesystem::path(path).parent_path()));
+          },
+          py::arg("path"),
           "Reads a case file (JSON); errors name the file or the field.")
       .def_readonly("whisker", &Case::whisker, "The Whisker of the case.")
       .def_readwrite("options", &Case::options, "SolveOptions (find_other_roots defaults to True for cases).")

@@ -5,7 +5,11 @@
 
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <string>
+#include <tuple>
+#include <utility>
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
@@ -174,14 +178,29 @@ void bind_inverse(py::module_& m) {
               ProgressCounter counter(control, F.size() * F.front().size());
               RunControl per_series;  // series poll the caller's cancel flag, progress counts frames
               per_series.cancel = control.cancel;
-              std::vector<std::vector<BaseWrenchResult>> out(F.size());
+              // A frame whose input is refused (std::invalid_argument) does not stop the batch: its series is
+              // solved again frame by frame (each frame cold), the refused frame is None with its message in
+              // `errors` ((series, frame, message)); vibrissa.inverse raises the first for on_error="raise".
+              std::vector<std::vector<std::optional<BaseWrenchResult>>> out(F.size());
+              std::vector<std::vector<std::pair<std::size_t, std::string>>> refused(F.size());
               std::exception_ptr error;
               const auto S = static_cast<std::ptrdiff_t>(F.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
               for (std::ptrdiff_t s = 0; s < S; ++s) {
                 try {
                   const auto k = static_cast<std::size_t>(s);
-                  out[k] = solve_base_wrench_series(w, X, F[k], M[k], o, per_series);
+                  try {
+                    for (auto& r : solve_base_wrench_series(w, X, F[k], M[k], o, per_series)) out[k].emplace_back(std::move(r));
+                  } catch (const std::invalid_argument&) {
+                    out[k].assign(F[k].size(), std::nullopt);
+                    for (std::size_t f = 0; f < F[k].size(); ++f) {
+                      try {
+                        out[k][f] = std::move(solve_base_wrench_series(w, X, {F[k][f]}, {M[k][f]}, o, per_series).front());
+                      } catch (const std::invalid_argument& e) {
+                        refused[k].emplace_back(f, e.what());
+                      }
+                    }
+                  }
                   counter.advance(F[k].size());
                 } catch (...) {
 #pragma omp critical(vibrissa_inverse_error)
@@ -189,7 +208,10 @@ void bind_inverse(py::module_& m) {
                 }
               }
               if (error) std::rethrow_exception(error);
-              return out;
+              std::vector<std::tuple<std::size_t, std::size_t, std::string>> errors;
+              for (std::size_t k = 0; k < refused.size(); ++k)
+                for (auto& [f, message] : refused[k]) errors.emplace_back(k, f, std::move(message));
+              return std::make_pair(std::move(out), std::move(errors));
             },
             progress);
       },

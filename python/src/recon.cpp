@@ -3,6 +3,9 @@
 // progress), so Python and the CLI give the same trial.
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <map>
+#include <tuple>
 #include <stdexcept>
 
 #include <pybind11/stl.h>
@@ -43,12 +46,14 @@ std::vector<Edge> edges_arg(const py::object& obj, const char* name, bool vertic
 void bind_recon(py::module_& m) {
   m.def(
       "_reconstruct",
-      [](const std::string& top, const std::string& front, const std::string& calibration, const py::object& peg,
-         const py::object& edge, const std::string& top_camera, const std::string& front_camera,
-         const std::vector<std::string>& bodyparts, const std::string& individual, int whisker_id,
-         const std::string& top_measurements, const std::string& front_measurements, double min_likelihood,
-         double max_reprojection_px, double contact_threshold, double base_jump, int fit_segments, int nodes,
-         double frame_rate, const std::string& source, const py::object& progress) {
+      [](const std::vector<std::array<std::string, 4>>& views, const std::string& calibration, const py::object& peg,
+         const py::object& edge, const std::vector<std::string>& bodyparts, const std::string& individual,
+         int whisker_id, double min_likelihood, double max_reprojection_px, double contact_threshold,
+         double base_jump, int fit_segments, int nodes, double frame_rate,
+         std::int64_t front_frame_offset, const std::map<std::string, std::int64_t>& frame_offsets, double min_yield, double max_unpaired,
+         double max_epipolar_px, const std::string& calibration_unit,
+         const std::vector<std::tuple<std::string, std::vector<std::string>, int>>& whiskers,
+         const std::string& source, const py::object& progress) -> py::object {
         recon::ReconstructOptions o;
         o.edges = edges_arg(peg, "peg", true);
         for (const Edge& e : edges_arg(edge, "edge", false)) o.edges.push_back(e);
@@ -59,24 +64,44 @@ void bind_recon(py::module_& m) {
         o.fit_segments = fit_segments;
         o.nodes = nodes;
         o.frame_rate = frame_rate;
+        o.front_frame_offset = front_frame_offset;
+        o.frame_offsets = frame_offsets;
+        o.min_yield = min_yield;
+        o.max_unpaired = max_unpaired;
+        o.max_epipolar_px = max_epipolar_px;
         o.validate();
         recon::ReconstructFiles files;
-        files.top = top;
-        files.front = front;
+        // Each view: (name, track file, camera name in the calibration, Janelia measurements).
+        for (const auto& [name, path, camera, measurements] : views)
+          files.views.push_back({name, path, camera, {measurements, whisker_id, bodyparts, individual}});
         files.calibration = calibration;
-        files.top_camera = top_camera;
-        files.front_camera = front_camera;
-        files.top_selection = {top_measurements, whisker_id, bodyparts, individual};
-        files.front_selection = {front_measurements, whisker_id, bodyparts, individual};
+        files.calibration_unit = calibration_unit;
+        if (!whiskers.empty()) {
+          // Several whiskers: [(name, trial or None, report JSON or None, error)] (recon::reconstruct_whiskers).
+          std::vector<recon::WhiskerSelection> selections;
+          for (const auto& [name, bodyparts_of, identity] : whiskers) selections.push_back({name, bodyparts_of, identity});
+          std::vector<recon::WhiskerTrial> rs = run_interruptible(
+              [&](const RunControl& control) { return recon::reconstruct_whiskers(files, selections, o, source, control); },
+              progress);
+          py::list out;
+          for (auto& w : rs) {
+            if (w.result)
+              out.append(py::make_tuple(w.name, std::move(w.result->trial), recon::report_json(w.result->reconstruction, -1),
+                                        w.error));
+            else
+              out.append(py::make_tuple(w.name, py::none(), py::none(), w.error));
+          }
+          return py::object(std::move(out));
+        }
         recon::ReconstructedTrial r = run_interruptible(
             [&](const RunControl& control) { return recon::reconstruct_files(files, o, source, control); }, progress);
         return py::make_tuple(std::move(r.trial), recon::report_json(r.reconstruction, -1));
       },
-      py::arg("top"), py::arg("front"), py::arg("calibration"), py::arg("peg"), py::arg("edge"),
-      py::arg("top_camera"), py::arg("front_camera"), py::arg("bodyparts"), py::arg("individual"),
-      py::arg("whisker_id"), py::arg("top_measurements"), py::arg("front_measurements"), py::arg("min_likelihood"),
-      py::arg("max_reprojection_px"), py::arg("contact_threshold"), py::arg("base_jump"), py::arg("fit_segments"),
-      py::arg("nodes"), py::arg("frame_rate"), py::arg("source"), py::arg("progress"));
+      py::arg("views"), py::arg("calibration"), py::arg("peg"), py::arg("edge"), py::arg("bodyparts"),
+      py::arg("individual"), py::arg("whisker_id"), py::arg("min_likelihood"), py::arg("max_reprojection_px"),
+      py::arg("contact_threshold"), py::arg("base_jump"), py::arg("fit_segments"), py::arg("nodes"),
+      py::arg("frame_rate"), py::arg("front_frame_offset"), py::arg("frame_offsets"), py::arg("min_yield"), py::arg("max_unpaired"),
+      py::arg("max_epipolar_px"), py::arg("calibration_unit"), py::arg("whiskers"), py::arg("source"), py::arg("progress"));
   // The pixels of world points [m] through one camera of a calibration (recon::read_calibration), with its
   // distortion: what the reconstruction assumes, checked against cv2.projectPoints in python/tests.
   m.def(

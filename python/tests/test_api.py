@@ -147,7 +147,9 @@ def test_warm_start_accepts_state_or_solution(whisker):
 
 
 def test_status_enum():
-    assert [s.label for s in Status.__members__.values()] == list(vibrissa.STATUS_NAMES)
+    # The batch names also the Python-only code of a refused frame, one past the solver's statuses.
+    assert [s.label for s in Status.__members__.values()] + ["invalid_input"] == list(vibrissa.STATUS_NAMES)
+    assert vibrissa.STATUS_NAMES[vibrissa.batch.INVALID_INPUT] == "invalid_input"
     assert vibrissa.status_from_string("slipped_off") == Status.slipped_off
     assert int(Status.converged) == 0
     with pytest.raises(ValueError, match="unknown value"):

@@ -157,7 +157,39 @@ def test_batch_layout_errors_name_the_arguments(small_whisker, peg_track):
     with pytest.raises(ValueError, match=r"threads must lie in \[1, 1024\], got 0"):
         vibrissa.solve_point_batch(small_whisker, peg_track, threads=0)
     with pytest.raises(ValueError, match=r"load.force must be >= 0.*series 0, frame 1"):
-        vibrissa.solve_force_batch(small_whisker, [1e-5, -1.0], 0.01)
+        vibrissa.solve_force_batch(small_whisker, [1e-5, -1.0], 0.01, on_error="raise")
+    with pytest.raises(ValueError, match=r"on_error must be one of \['record', 'raise'\], got 'stop'"):
+        vibrissa.solve_force_batch(small_whisker, [1e-5], 0.01, on_error="stop")
+
+
+def test_a_refused_frame_is_recorded_and_the_batch_goes_on(small_whisker, peg_track):
+    # Issue 23: like `solve --jsonl`, a bad frame is reported (status invalid_input, NaN, its message naming
+    # the series, frame and field) and every other frame is solved as on its own.
+    forces = [1e-5, -1.0, float("nan"), 2e-5]
+    with pytest.warns(UserWarning, match=r"solve_force_batch: 2 of 4 frames refused.*series 0, frame 1: "
+                                         r"load.force must be >= 0"):
+        batch = vibrissa.solve_force_batch(small_whisker, forces, 0.01)
+    assert list(batch.status_names) == ["converged", "invalid_input", "invalid_input", "converged"]
+    assert [(s, f) for s, f, _ in batch.errors] == [(0, 1), (0, 2)]
+    assert "load.force" in batch.errors[0][2] and "-1" in batch.errors[0][2]
+    assert "load.force" in batch.errors[1][2] and "nan" in batch.errors[1][2].lower()
+    assert np.isnan(batch.force_W[1:3]).all() and np.isnan(batch.arc_length[1:3]).all()
+    assert not batch.converged[1:3].any()
+    for k in (0, 3):
+        assert_matches(batch, k, vibrissa.solve_force(small_whisker, forces[k], 0.01))
+    # A warm-started series goes on after its bad frame; the other series is untouched.
+    track = np.stack([peg_track, peg_track])
+    track[1, 4] = np.nan
+    with pytest.warns(UserWarning, match=r"1 of 24 frames refused.*series 1, frame 4"):
+        both = vibrissa.solve_point_batch([small_whisker] * 2, track)
+    assert [(s, f) for s, f, _ in both.errors] == [(1, 4)]
+    assert both.status_names[1, 4] == "invalid_input"
+    clean = vibrissa.solve_point_batch(small_whisker, peg_track)
+    assert len(clean.errors) == 0
+    np.testing.assert_array_equal(both.status[0], clean.status)
+    np.testing.assert_allclose(both.force_W[0], clean.force_W, rtol=1e-12, atol=0.0)
+    np.testing.assert_array_equal(both.status[1, :4], clean.status[:4])
+    assert (both.status[1, 5:] != vibrissa.batch.INVALID_INPUT).all()
 
 
 def test_result_conveniences(small_whisker, peg_track):

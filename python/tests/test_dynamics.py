@@ -121,11 +121,11 @@ def test_modes_about_a_peg_match_the_cli(cli, tmp_path):
     assert m.equilibrium["contact"] == "stick" and m.equilibrium["constraints"] == 3
     assert from_cli["equilibrium"]["force_B"] == m.equilibrium["force_B"]
     assert m.frequency[0] > 1.5 * vibrissa.modes(whisker(), 1).frequency[0]
-    slip = vibrissa.modes(whisker(), 4, load=load, contact="slip")
+    slip = vibrissa.modes(whisker(), 4, load=load, hold="slip")
     assert slip.equilibrium["constraints"] == 1 and slip.frequency[0] < m.frequency[0]
-    with pytest.raises(ValueError, match="contact"):
+    with pytest.raises(ValueError, match="hold"):
         vibrissa.modes(whisker(), 4, load={"mode": "dead_load", "force": [0, 1e-5, 0], "arc_length": 0.02},
-                       contact="stick")
+                       hold="stick")
 
 
 def test_array_dynamics_in_air():

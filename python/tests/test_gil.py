@@ -77,6 +77,17 @@ def undisturbed(measure, nominal_seconds, attempts=10):
     return seconds, inside
 
 
+def overlapping(measure, needed, attempts=5):
+    """`measure()` -> (seconds, count), repeated until count >= `needed` (at most `attempts` times); returns the
+    last. On a loaded machine the OS may keep the other thread off the cores for most of one long call; a call
+    that holds the GIL gives 0 every time, so retrying cannot make a failing call pass."""
+    for _ in range(attempts):
+        seconds, inside = measure()
+        if inside >= needed:
+            break
+    return seconds, inside
+
+
 def test_the_method_detects_a_call_that_holds_the_gil():
     libc_holding = ctypes.PyDLL(None)   # PyDLL: the GIL stays held during foreign calls
     libc_releasing = ctypes.CDLL(None)  # CDLL: released
@@ -84,15 +95,15 @@ def test_the_method_detects_a_call_that_holds_the_gil():
     for short in (pure_python, lambda: vibrissa.solve_point_batch(w, points[:5], warm_start=False, threads=1)):
         seconds, inside = undisturbed(lambda: repetitions_inside(lambda: libc_holding.usleep(200_000), short), 0.2)
         assert seconds >= MIN_CALL_SECONDS and inside == 0
-        seconds, inside = repetitions_inside(lambda: libc_releasing.usleep(200_000), short)
+        seconds, inside = overlapping(lambda: repetitions_inside(lambda: libc_releasing.usleep(200_000), short), 1)
         assert seconds >= MIN_CALL_SECONDS and inside > 0
 
 
 def test_python_keeps_running_during_a_batch():
     w, points = batch_args()
     batch = long_batch(w, points)
-    seconds, inside = repetitions_inside(
-        lambda: vibrissa.solve_point_batch(w, batch, warm_start=False, threads=1), pure_python)
+    seconds, inside = overlapping(lambda: repetitions_inside(
+        lambda: vibrissa.solve_point_batch(w, batch, warm_start=False, threads=1), pure_python), 10)
     assert seconds >= MIN_CALL_SECONDS
     assert inside >= 10, (seconds, inside)
 
@@ -100,9 +111,9 @@ def test_python_keeps_running_during_a_batch():
 def test_two_threads_are_inside_the_solver_together():
     w, points = batch_args()
     batch = long_batch(w, points)
-    seconds, inside = repetitions_inside(
+    seconds, inside = overlapping(lambda: repetitions_inside(
         lambda: vibrissa.solve_point_batch(w, batch, warm_start=False, threads=1),
-        lambda: vibrissa.solve_point_batch(w, points[:5], warm_start=False, threads=1))
+        lambda: vibrissa.solve_point_batch(w, points[:5], warm_start=False, threads=1)), 3)
     assert seconds >= MIN_CALL_SECONDS
     # Short solves started and finished while the long batch was inside the solver: the calls overlapped.
     assert inside >= 3, (seconds, inside)
@@ -111,8 +122,8 @@ def test_two_threads_are_inside_the_solver_together():
 def test_single_solve_releases_the_gil():
     w = vibrissa.Whisker.from_parabola(0.03, 20.0, properties=WhiskerProperties(links=200_000))
     probing = vibrissa.SolveOptions(find_other_roots=True)  # a root scan: long enough at any engine speed
-    seconds, inside = repetitions_inside(
-        lambda: vibrissa.solve_point(w, [0.02, 0.004, 0.001], options=probing), pure_python)
+    seconds, inside = overlapping(lambda: repetitions_inside(
+        lambda: vibrissa.solve_point(w, [0.02, 0.004, 0.001], options=probing), pure_python), 10)
     assert seconds >= MIN_CALL_SECONDS
     assert inside >= 10, (seconds, inside)
 
@@ -121,9 +132,11 @@ def test_pipeline_calls_release_the_gil():
     """synthesize_trial / analyze_trial / simulate_array run on a worker thread; the caller waits with the GIL
     released (python/src/interruptible.hpp)."""
     synthesis = lasting(lambda d: d, lambda d: vibrissa.synthesize_trial(duration=d), 2.0, 2 * MIN_CALL_SECONDS)
-    seconds, inside = repetitions_inside(lambda: vibrissa.synthesize_trial(duration=synthesis), pure_python)
+    seconds, inside = overlapping(
+        lambda: repetitions_inside(lambda: vibrissa.synthesize_trial(duration=synthesis), pure_python), 10)
     assert seconds >= MIN_CALL_SECONDS and inside >= 10, (seconds, inside)
     trial = lasting(lambda d: vibrissa.synthesize_trial(duration=d), lambda t: vibrissa.analyze_trial(t, mu=0.48),
                     2.0, 2 * MIN_CALL_SECONDS)
-    seconds, inside = repetitions_inside(lambda: vibrissa.analyze_trial(trial, mu=0.48), pure_python)
+    seconds, inside = overlapping(
+        lambda: repetitions_inside(lambda: vibrissa.analyze_trial(trial, mu=0.48), pure_python), 10)
     assert seconds >= MIN_CALL_SECONDS and inside >= 10, (seconds, inside)

@@ -78,7 +78,7 @@ def test_batch_series_with_warm_starts_equals_single_solves(whisker):
 
 
 def test_cli_base_wrench_mode(cli, tmp_path, whisker):
-    fwd = vibrissa.solve_force(whisker, 1e-4, 0.018, -0.7)
+    fwd = vibrissa.solve_force(whisker, 1e-4, 0.01815, -0.7)  # mid-link: at a node the map has a kink
     case = {"whisker": {"length": 0.03, "curvature": 20.0},
             "load": {"mode": "base_wrench", "force": fwd.force_W.tolist(), "moment": fwd.moment_W.tolist(),
                      "signals": "all", "noise": [1e-6, 1e-6, 1e-6, 1e-8, 1e-8, 1e-8]}}
@@ -86,7 +86,7 @@ def test_cli_base_wrench_mode(cli, tmp_path, whisker):
     path.write_text(json.dumps(case))
     out = json.loads(subprocess.run([cli, "solve", str(path)], check=True, capture_output=True, text=True).stdout)
     assert out["status"] == "converged"
-    assert out["arc_length"] == pytest.approx(0.018, rel=1e-9)
+    assert out["arc_length"] == pytest.approx(0.01815, rel=1e-9)
     assert out["force_magnitude"] == pytest.approx(1e-4, rel=1e-9)
     bw = out["base_wrench"]
     assert bw["signals"] == "all" and bw["identifiability"]["identifiable"]
@@ -105,3 +105,20 @@ def test_cli_base_wrench_mode(cli, tmp_path, whisker):
     path.write_text(json.dumps(case))
     bad = subprocess.run([cli, "solve", str(path)], capture_output=True, text=True)
     assert bad.returncode != 0 and "load.noise" in bad.stderr
+
+
+def test_a_refused_frame_does_not_stop_the_batch(whisker):
+    # Issue 23: a NaN force in frame 1 of series 1 is recorded (invalid_input, NaN) and every other frame is fit.
+    fits = [vibrissa.solve_force(whisker, 1e-4, s, 0.3) for s in (0.01215, 0.01815, 0.02415)]
+    F = np.array([[f.force_W for f in fits]] * 2)
+    M = np.array([[f.moment_W for f in fits]] * 2)
+    F[1, 1, 0] = np.nan
+    with pytest.warns(UserWarning, match=r"1 of 6 frames refused.*series 1, frame 1: force must be finite"):
+        batch = vibrissa.solve_base_wrench_batch(whisker, F, M)
+    assert [(s, f) for s, f, _ in batch.errors] == [(1, 1)]
+    assert vibrissa.STATUS_NAMES[batch.status[1, 1]] == "invalid_input" and np.isnan(batch.arc_length[1, 1])
+    assert batch.results[1][1] is None
+    assert batch.converged[0].all() and batch.converged[1, [0, 2]].all()
+    np.testing.assert_allclose(batch.arc_length[1, [0, 2]], [0.01215, 0.02415], rtol=1e-9)
+    with pytest.raises(ValueError, match=r"force must be finite.*\(series 1, frame 1\)"):
+        vibrissa.solve_base_wrench_batch(whisker, F, M, on_error="raise")

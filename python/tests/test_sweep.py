@@ -98,22 +98,45 @@ def assert_same_results(expected, found):
 
 
 def test_a_worker_killed_mid_run_loses_nothing_and_results_match_serial(local_cluster, serial, tmp_path):
+    """A worker is killed (SIGKILL) while it is inside a chunk: the workers are held at the start of their
+    chunks (holding.py) until one is killed, so the kill cannot come too late under load (all chunks already
+    done) or too early (a task assigned but not started)."""
+    import cloudpickle
+    import holding
     client, pids = local_cluster
     workers = pids()
+    flags = tmp_path / "flags"
+    flags.mkdir()
+    (flags / "hold").touch()
+    cloudpickle.register_pickle_by_value(holding)
+    try:
+        assert sorted(client.run(holding.hold_chunks, str(flags)).values()) == sorted(workers.values())
+    finally:
+        cloudpickle.unregister_pickle_by_value(holding)
     killed = {}
 
-    def kill_a_busy_worker(done, total):
-        if done == 0 or killed:
-            return
-        busy = [address for address, keys in client.processing().items() if keys and address in workers]
-        if busy:
-            killed["pid"], killed["keys"] = workers[busy[0]], client.processing()[busy[0]]
-            os.kill(killed["pid"], signal.SIGKILL)
+    def kill_a_worker_in_a_chunk():
+        try:
+            stop = time.monotonic() + 60
+            while time.monotonic() < stop:  # until a worker has entered a chunk (it is held there)
+                started = [int(f.name.split("-")[1]) for f in flags.glob("started-*")]
+                running = {address: keys for address, keys in client.processing().items() if keys}
+                inside = [a for a, pid in workers.items() if pid in started and a in running]
+                if inside:
+                    killed["pid"], killed["keys"] = workers[inside[0]], running[inside[0]]
+                    os.kill(killed["pid"], signal.SIGKILL)
+                    break
+                time.sleep(0.02)
+        finally:
+            (flags / "hold").unlink()  # let the other worker go on
 
+    killer = threading.Thread(target=kill_a_worker_in_a_chunk)
+    killer.start()
     with deadline(120, lambda: [os.kill(p, signal.SIGKILL) for p in pids().values()]):
-        found = vibrissa.sweep("array", BASE, grid=GRID, client=client, chunk_size=1, out=tmp_path / "dask",
-                               progress=kill_a_busy_worker).load()
-    assert killed, "no worker was busy after the first chunk"
+        found = vibrissa.sweep("array", BASE, grid=GRID, client=client, chunk_size=1,
+                               out=tmp_path / "dask").load()
+    killer.join()
+    assert killed, "no worker entered a chunk within 60 s"
     assert not psutil.pid_exists(killed["pid"]) or psutil.Process(killed["pid"]).status() == psutil.STATUS_ZOMBIE
     # Its chunk ran again elsewhere: every run is there once, and the results are the serial ones bit for bit.
     index = json.loads((tmp_path / "dask" / "index.json").read_text())["chunks"]
@@ -134,9 +157,9 @@ def test_an_interrupted_sweep_resumes_where_it_stopped(serial, tmp_path, monkeyp
     ran = []
     original = sweep_module.run_chunk
 
-    def counting(kind, base, runs, variables=None):
+    def counting(kind, base, runs, variables=None, on_error="raise"):
         ran.append([index for index, _ in runs])
-        return original(kind, base, runs, variables)
+        return original(kind, base, runs, variables, on_error)
     monkeypatch.setattr(sweep_module, "run_chunk", counting)
 
     def stop_after_two_chunks(done, total):
@@ -209,7 +232,8 @@ def test_cli_ctrl_c_shuts_the_cluster_down_and_the_sweep_resumes(cli, serial, tm
     assert done.returncode == 0, done.stderr
     assert "wrote" in done.stdout
     with xr.open_dataset(out / "sweep.nc") as found:
-        assert_same_results(serial[["state", "FT", "MB"]], found.load())
+        assert not any(found.error.values.ravel().tolist())  # every run ran (the error variable is always there)
+        assert_same_results(serial[["state", "FT", "MB"]], found.load().drop_vars("error"))
 
 
 def test_trial_and_solve_sweeps_give_the_numbers_of_the_direct_calls(tmp_path):
@@ -234,9 +258,25 @@ def test_trial_and_solve_sweeps_give_the_numbers_of_the_direct_calls(tmp_path):
     assert trials["synth.seed"].values.tolist()[1] == 5
 
 
+def test_an_array_base_that_omits_keys_takes_the_defaults_values():
+    """As in `vibrissa array`: a partial base (here without objects, as in docs/sweeps.md's JSON example) lies over
+    the built-in configuration, so a swept path inside the default's peg exists."""
+    partial = {"morphology": {"whiskers": ["C2"]}, "time": {"frames": 20}}
+    found = vibrissa.sweep("array", partial, grid={"objects.0.point_mm.0": [16.0, 24.0]}, variables=["FT"],
+                           scheduler="serial")
+    default = vibrissa.default_array_config()
+    assert default["objects"][0]["point_mm"][0] not in (16.0, 24.0)  # the sweep, not the default, placed the peg
+    config = sweep_runs.configured(dict(default, morphology={**default["morphology"], "whiskers": ["C2"]},
+                                        time={**default["time"], "frames": 20}), {"objects.0.point_mm.0": 24.0})
+    np.testing.assert_array_equal(found.FT.sel({"objects.0.point_mm.0": 24.0}).values,
+                                  vibrissa.simulate_array(config).FT)
+
+
 def test_bad_sweeps_are_refused_before_anything_runs(tmp_path):
     with pytest.raises(ValueError, match=r"sweep run 1 \(time.frames=1\): time.frames must be an integer in \[2, "):
-        vibrissa.sweep("array", BASE, grid={"time.frames": [100, 1]}, scheduler="serial")
+        vibrissa.sweep("array", BASE, grid={"time.frames": [100, 1]}, scheduler="serial", on_error="raise")
+    with pytest.raises(ValueError, match=r"on_error must be one of \['record', 'raise'\], got 'ignore'"):
+        vibrissa.sweep("array", BASE, grid={"time.frames": [100]}, scheduler="serial", on_error="ignore")
     with pytest.raises(ValueError, match="objects is a list of 1, so it has no entry 3"):
         vibrissa.sweep("array", BASE, grid={"objects.3.point_mm.0": [1.0]}, scheduler="serial")
     with pytest.raises(ValueError, match="kind must be one of"):
@@ -269,3 +309,28 @@ def test_the_documented_sweep_and_the_scaling_script_run_as_written(tmp_path):
                           env=env, capture_output=True, text=True, timeout=180)
     assert done.returncode == 0, done.stderr
     assert done.stdout.count("bit-identical to serial: True") == 2 and "overhead per task" in done.stdout
+
+
+def test_a_sweep_goes_on_after_a_bad_run_and_says_why(tmp_path):
+    # Issue 23: a refused configuration (run 1: an array config the reader refuses) and a run that fails when
+    # it runs (run 3: a solve case whose load is refused) are recorded; the other runs equal a clean sweep.
+    case = {"whisker": {"length": 0.03, "curvature": 20.0},
+            "load": {"mode": "force", "force": 1e-4, "arc_length": 0.02}}
+    forces = [1e-4, 2e-4, 3e-4, -1.0]
+    with pytest.warns(UserWarning, match=r"sweep: 1 of 4 runs failed .*sweep run 3 \(load.force=-1.0\): "
+                                         r"load.force must be >= 0"):
+        solved = vibrissa.sweep("solve", case, grid={"load.force": forces}, scheduler="serial",
+                                out=tmp_path / "solve")
+    assert solved.error.values.tolist()[:3] == ["", "", ""]
+    assert np.isnan(solved.force_magnitude.values[3]) and np.isnan(solved.status.values[3])
+    clean = vibrissa.sweep("solve", case, grid={"load.force": forces[:3]}, scheduler="serial")
+    np.testing.assert_array_equal(solved.force_W.values[:3], clean.force_W.values)
+    assert "error" not in clean.variables or not any(clean.error.values.tolist())
+    with pytest.warns(UserWarning, match=r"1 of 2 runs failed .*sweep run 1 \(time.frames=1\): time.frames must"):
+        arrays = vibrissa.sweep("array", BASE, grid={"time.frames": [100, 1]}, scheduler="serial",
+                                variables=["FT"])
+    assert arrays.error.values.tolist()[0] == "" and np.isnan(arrays.FT.values[1]).all()
+    assert np.isfinite(arrays.FT.values[0]).any()
+    # Every run refused: nothing to record, the first error is raised.
+    with pytest.raises(ValueError, match=r"sweep run 0 \(load.force=-1.0\)"):
+        vibrissa.sweep("solve", case, grid={"load.force": [-1.0, -2.0]}, scheduler="serial")

@@ -18,8 +18,8 @@ def test_a_plausible_whisker_and_pose_raise_nothing():
 
 
 def test_constructors_warn_about_mm_given_as_metres_and_degrees_given_as_radians():
-    with pytest.warns(UserWarning, match=r"whisker length 39\.9\d* m .* did you mean 39\.99 mm \(a length in mm "
-                                         r"given as metres"):
+    with pytest.warns(UserWarning, match=r"whisker length 40(\.0\d*)? m \(40 m\) .* did you mean 40 mm \(a "
+                                         r"length in mm given as metres"):
         vibrissa.Whisker.from_parabola(40, 12)
     with pytest.warns(UserWarning, match=r"Pose.theta 10 rad \(573 deg\) is beyond \+-pi: did you mean 10 deg"):
         vibrissa.Pose(theta=10)

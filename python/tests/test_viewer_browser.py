@@ -247,5 +247,180 @@ def test_trial_page_draws_the_whisker_through_its_contact_point(browser, tmp_pat
     t = np.clip(np.einsum("ij,ij->i", point[frame] - a, b - a) / np.einsum("ij,ij->i", b - a, b - a), 0, 1)
     assert np.min(np.linalg.norm(a + t[:, None] * (b - a) - point[frame], axis=1)) < 0.05
     assert js(browser, "return window.vibrissaViewer.meta.kind") == "trial"
+    # F_D and M_D as the figures draw them: the stored angle (mod 360) where defined, unwrapped within a contact
+    with h5py.File(results / "frames.h5", "r") as f:
+        stored = {"MD": np.degrees(f["cp_MD"][()]), "FD": np.degrees(f["cp_FD"][()]), "period": f["period"][()]}
+    for s, name in ((2, "MD"), (3, "FD")):
+        shown = np.array(js(browser, "const v = window.vibrissaViewer; return v.meta.times.map((_, t) => v.signal("
+                                     "arguments[0], 0, t))", s), dtype=float)
+        drawn = np.isfinite(shown)
+        assert drawn.sum() > 10 and np.isfinite(stored[name][drawn]).all()
+        turns = (shown[drawn] - stored[name][drawn]) / 360
+        assert np.allclose(turns, np.round(turns), atol=1e-5)  # the same direction
+        same_period = np.diff(stored["period"]) == 0
+        steps = np.abs(np.diff(shown))[same_period & drawn[1:] & drawn[:-1]]
+        assert steps.max() < 90, (name, steps.max())  # no wrap within a contact
     shot(browser, "trial")
     assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def open_page(browser, page):
+    browser.get_log("browser")  # clear
+    browser.get(pathlib.Path(page).as_uri())
+    WebDriverWait(browser, 60).until(lambda d: d.execute_script("return !!(window.vibrissaViewer && "
+                                                                "window.vibrissaViewer.ready)"))
+
+
+def page_line(browser, w=0):
+    return np.array(js(browser, "return window.vibrissaViewer.centreLine(arguments[0])", w)).reshape(-1, 3)
+
+
+def within_grid(browser, line_mm, expected_mm):
+    half_step = 0.5 * np.array(js(browser, "return window.vibrissaViewer.meta.quant.step"))
+    return (np.abs(line_mm - viewer._resample(expected_mm)) <= half_step * 1.001 + 1e-5).all()
+
+
+SOLVE_CASE = {"whisker": {"length": 0.03, "curvature": 20.0, "links": 60},
+              "load": {"mode": "object", "object": {"type": "cylinder", "point": [0.02, 0.003, 0.0],
+                                                    "axis": [0, 0, 1], "radius": 0.001}, "approach": [0, 1, 0]}}
+
+
+def test_solve_page_shows_the_whisker_contact_and_force(browser, tmp_path):
+    case_path = tmp_path / "case.json"
+    case_path.write_text(json.dumps(SOLVE_CASE))
+    solution = vibrissa.solve_case_file(case_path, tmp_path / "out.json")
+    assert solution.converged
+    page = viewer.view(tmp_path / "out.json", tmp_path / "solve.html")  # finds case.json beside the result
+    assert solution.view(tmp_path / "same.html", case=case_path).read_text() == page.read_text()
+    open_page(browser, page)
+    assert js(browser, "return window.vibrissaViewer.meta.kind") == "solve"
+    shape_mm = np.asarray(solution.shape_W) * 1e3
+    assert within_grid(browser, page_line(browser), shape_mm)  # the deflected whisker where the solve put it
+    rest = np.array(js(browser, "return window.vibrissaViewer.meta.rest"))
+    assert rest  # the rest shape is drawn (the case is known)
+    arrow = js(browser, "return window.vibrissaViewer.arrow(0)")  # the contact force, at the contact point
+    assert np.allclose(arrow["origin"], np.asarray(solution.contact_point_W) * 1e3, atol=1e-3)
+    force = np.asarray(solution.force_W)
+    assert np.allclose(arrow["direction"], force / np.linalg.norm(force), atol=1e-5)
+    base_moment = js(browser, "return window.vibrissaViewer.arrow(2)")
+    assert np.allclose(base_moment["origin"], shape_mm[0], atol=1e-3)
+    moment = np.asarray(solution.moment_W)
+    assert np.allclose(base_moment["direction"], moment / np.linalg.norm(moment), atol=1e-5)
+    table = browser.find_element(By.ID, "values").text
+    assert "converged" in table and f"{solution.force_magnitude:.4g} N" in table
+    assert not browser.find_element(By.ID, "slider").is_displayed()  # one frame: no slider
+    img = shot(browser, "solve")
+    # the contact point is drawn: the contact dot (black) or the whisker at the point where it projects
+    x, y = js(browser, "return window.vibrissaViewer.projectMm(arguments[0])", (np.asarray(solution.contact_point_W) * 1e3).tolist())
+    assert (img[int(y) - 3:int(y) + 4, int(x) - 3:int(x) + 4].sum(axis=2) < 3 * 120).any()
+    assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+    cli = os.environ.get("VIBRISSA_CLI")
+    if cli:  # the command gives the same page (case.json beside the result)
+        done = subprocess.run([cli, "view", str(tmp_path / "out.json"), "-o", str(tmp_path / "cli.html")],
+                              capture_output=True, text=True, timeout=120)
+        assert done.returncode == 0, done.stderr
+        assert (tmp_path / "cli.html").read_text() == page.read_text()
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"a": 1}')
+    with pytest.raises(ValueError, match="not a `vibrissa solve` result"):
+        viewer.view(bad, tmp_path / "bad.html")
+
+
+def select_value(browser, element_id, index):
+    js(browser, """const s = document.getElementById(arguments[0]); s.value = String(arguments[1]);
+                   s.dispatchEvent(new Event('change'));""", element_id, index)
+
+
+def test_sweep_page_picks_a_run_by_its_grid_coordinates(browser, tmp_path):
+    from vibrissa.sweep_runs import configured
+    base = vibrissa.default_array_config()
+    base["morphology"]["whiskers"] = ["C1", "C2", "D1"]
+    base["time"]["frames"] = 24
+    grid = {"objects.0.point_mm.0": [16.0, 24.0], "whisking.amplitude_deg": [20, 30]}
+    result = vibrissa.sweep("array", base, out=tmp_path / "sweep", scheduler="serial", grid=grid,
+                            variables=["state", "MB", "FT"])
+    page = result.vibrissa.view(tmp_path / "sweep.html")  # the accessor; `vibrissa view DIR` the same page
+    assert viewer.view(tmp_path / "sweep", tmp_path / "same.html").read_text() == page.read_text()
+    open_page(browser, page)
+    labels = js(browser, "return window.vibrissaViewer.meta.group_dims.map(d => d.label)")
+    assert labels == list(grid)
+    frame = 20
+    js(browser, "window.vibrissaViewer.setFrame(arguments[0])", frame)
+    select_value(browser, "pitch", 1)  # objects.0.point_mm.0 = 24
+    select_value(browser, "dim-1", 1)  # whisking.amplitude_deg = 30
+    assert js(browser, "return window.vibrissaViewer.group") == 3
+    run = dict(base, output={"render_count": 24, "render_pitch_index": 0})
+    expected = vibrissa.simulate_array(configured(run, {"objects.0.point_mm.0": 24.0, "whisking.amplitude_deg": 30}))
+    shapes = expected["render/deflected"][frame] * 1e3
+    for w in range(3):
+        assert within_grid(browser, page_line(browser, w), shapes[w])
+    # the plotted signal of the selected whisker is the sweep's value at that run
+    w = js(browser, "return window.vibrissaViewer.selected")
+    mb = float(result.MB.isel({"objects.0.point_mm.0": 1, "whisking.amplitude_deg": 1, "pitch": 0, "whisker": w,
+                                "time": frame})) * 1e6
+    shown = js(browser, "return window.vibrissaViewer.signal(0, arguments[0], arguments[1])", w, frame)
+    assert shown == pytest.approx(mb, rel=1e-6, abs=1e-9)
+    img_a = shot(browser, "sweep")
+    select_value(browser, "pitch", 0)  # another peg position: the scene changes
+    assert js(browser, "return window.vibrissaViewer.group") == 1
+    assert np.abs(shot(browser, "sweep_other") - img_a).sum(axis=2).astype(bool).mean() > 0.0005
+    assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def test_solve_sweep_page_steps_through_the_last_parameter(browser, tmp_path):
+    case = {"whisker": {"length": 0.03, "curvature": 20.0, "links": 60},
+            "load": {"mode": "edge", "point": [0.02, 0.0065, 0.0], "direction": [0, 0, 1]}}
+    ys = [0.0075, 0.0065, 0.0055]
+    result = vibrissa.sweep("solve", case, out=tmp_path / "s", scheduler="serial",
+                            grid={"load.point.2": [0.0, 0.002], "load.point.1": ys})
+    page = viewer.view(tmp_path / "s", tmp_path / "s.html")
+    open_page(browser, page)
+    assert js(browser, "return window.vibrissaViewer.meta.times") == ys
+    select_value(browser, "pitch", 1)  # load.point.2 = 0.002
+    js(browser, "window.vibrissaViewer.setFrame(2)")
+    solved = vibrissa.load_case(dict(case, load=dict(case["load"], point=[0.02, ys[2], 0.002]))).solve()
+    assert within_grid(browser, page_line(browser), np.asarray(solved.shape_W) * 1e3)
+    assert float(result.FT.isel({"load.point.2": 1, "load.point.1": 2})) * 1e3 == pytest.approx(
+        js(browser, "return window.vibrissaViewer.signal(1, 0, 2)"), rel=1e-6)
+    assert "load.point.1" in browser.find_element(By.ID, "time").text
+    shot(browser, "solve_sweep")
+    assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def test_trial_sweep_page_shows_each_runs_trial(browser, tmp_path):
+    result = vibrissa.sweep("trial", {"synth": {"duration": 0.12}}, out=tmp_path / "t", scheduler="serial",
+                            grid={"analysis.mu": [0.2, 0.6], "synth.seed": [1, 2]}, variables=["cp_MB", "cp_FT"])
+    page = viewer.view(tmp_path / "t", tmp_path / "t.html", runs=[0, 3])  # (mu 0.2, seed 1) and (mu 0.6, seed 2)
+    open_page(browser, page)
+    assert js(browser, "return window.vibrissaViewer.meta.group_dims[0].label") == "run"
+    select_value(browser, "pitch", 1)  # run 3: mu 0.6, seed 2
+    assert js(browser, "return window.vibrissaViewer.group") == 1
+    mb = result.cp_MB.isel({"analysis.mu": 1, "synth.seed": 1}).values * 1e6
+    shown = np.array(js(browser, "const v = window.vibrissaViewer; return v.meta.times.map((_, t) => v.signal(0, 0, t))"),
+                     dtype=float)
+    assert np.allclose(shown, mb, rtol=1e-6, atol=1e-9, equal_nan=True)  # the sweep's M_B of that run
+    other = result.cp_MB.isel({"analysis.mu": 0, "synth.seed": 0}).values * 1e6
+    assert not np.allclose(other, mb, rtol=1e-3, equal_nan=True)  # the other run differs: the list picked this one
+    assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def test_sweep_page_draws_each_runs_own_object(tmp_path):
+    import re
+    base = vibrissa.default_array_config()
+    base["morphology"]["whiskers"] = ["C1", "C2"]
+    base["time"]["frames"] = 6
+    base["objects"] = [{"type": "sphere", "frame": "head", "centre_mm": [20, -8, -3], "radius_mm": 3}]
+    result = vibrissa.sweep("array", base, scheduler="serial", grid={"objects.0.radius_mm": [2.0, 4.0]},
+                            variables=["state"])
+    text = result.vibrissa.view(tmp_path / "p.html").read_text()
+    meta = json.loads(re.search(r'id="vibrissa-meta">(.*?)</script>', text, re.S).group(1))
+    blobs = {m.group(1): m.group(0) for m in re.finditer(r'<script type="application/octet-stream" id="(b\d+)".*?</script>', text, re.S)}
+    assert len(meta["objects"]) == 2  # one sphere per radius
+    radii = []
+    for o in meta["objects"]:
+        v = decode_blob(blobs[o["vertices"]]).reshape(-1, 3)
+        radii.append(np.linalg.norm(v - v.mean(axis=0), axis=1).max())
+    assert radii == pytest.approx([2.0, 4.0], rel=0.02)  # mm
+    for g, group in enumerate(meta["groups"]):  # each run places its own sphere, the other is collapsed
+        poses = decode_blob(blobs[group["object_poses"]]).reshape(6, 2, 12)
+        assert np.abs(poses[:, g]).max() > 0 and np.abs(poses[:, 1 - g]).max() == 0

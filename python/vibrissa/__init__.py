@@ -93,6 +93,17 @@ from .pipeline import (  # noqa: F401
     synthesize_trial_defaults,
 )
 
+
+def _solution_view(self, path="solve_view.html", case=None):
+    """Writes the interactive 3D viewer of this solve, one self-contained HTML file (docs/viewer.md; as
+    ``vibrissa view RESULT.json``); `case` (the Case, a case file or dict) adds the rest shape and the edge.
+    Returns the path."""
+    from .viewer import write_solve_view
+    return write_solve_view(self, path, case)
+
+
+Solution.view = _solution_view  # a method of the compiled class, written in Python (the viewer is Python)
+
 __all__ = [
     "ArrayResult", "Trial", "TrialResult", "analyze_trial", "default_array_config", "read_trial",
     "simulate_array", "synthesize_trial", "synthesize_trial_defaults",

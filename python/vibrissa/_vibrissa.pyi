@@ -1,6 +1,8 @@
 """Type stubs of the compiled core (python/src/*.cpp). SI units: m, N, N·m, Pa, rad."""
 
 import enum
+import os
+import pathlib
 from typing import Any, Callable, ClassVar, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -235,6 +237,7 @@ class Solution:
     def moment(self) -> Vec3: ...  # world [N·m]
     @property
     def whisker_frame(self) -> WhiskerFrameSignals: ...
+    def view(self, path: str | os.PathLike[str] = "solve_view.html", case: Any = None) -> pathlib.Path: ...  # docs/viewer.md (vibrissa/__init__.py)
     @property
     def normal_force(self) -> Optional[float]: ...
     @property
@@ -414,6 +417,7 @@ class Trial:
 def read_trial(path: str) -> Trial: ...
 def default_array_config_json() -> str: ...
 def _check_array_config(text: str) -> None: ...
+def _resolve_input_paths(text: str, base_dir: str) -> str: ...  # files named relative to base_dir made absolute
 
 # A labelled description (python/src/labelled.hpp): {"variables": [(path, dims, attrs, values)],
 # "attributes": [(group, name, value)]}, what vibrissa.labelled.to_dataset turns into an xarray Dataset.
@@ -438,11 +442,12 @@ def _synthesize_trial(options: dict[str, Any], progress: Any = None) -> Trial: .
 def _synth_parameter_defaults() -> dict[str, float]: ...
 def _analyze_trial(trial: Trial, mu: Optional[float], mu_eq7: Optional[float], cutoff: float, filter_order: int,
                    no_filter: bool, no_roll_fit: bool, rest_shape_per_contact: bool, progress: Any) -> _TrialOutputs: ...
-def _reconstruct(top: str, front: str, calibration: str, peg: Any, edge: Any, top_camera: str, front_camera: str,
-                 bodyparts: list[str], individual: str, whisker_id: int, top_measurements: str,
-                 front_measurements: str, min_likelihood: float, max_reprojection_px: float,
+def _reconstruct(views: list[list[str]], calibration: str, peg: Any, edge: Any, bodyparts: list[str],
+                 individual: str, whisker_id: int, min_likelihood: float, max_reprojection_px: float,
                  contact_threshold: float, base_jump: float, fit_segments: int, nodes: int, frame_rate: float,
-                 source: str, progress: Any) -> tuple[Trial, str]: ...
+                 front_frame_offset: int, frame_offsets: dict[str, int], min_yield: float, max_unpaired: float, max_epipolar_px: float,
+                 calibration_unit: str, whiskers: list[tuple[str, list[str], int]], source: str,
+                 progress: Any) -> Any: ...
 def _project_points(calibration: str, camera: str, points_W: Any, calibration_unit: str) -> list[list[float]]: ...
 def _simulate_array(config_text: Optional[str], path: Optional[str], threads: Optional[int],
                     progress: Any, dynamics: bool = ...) -> _ArrayRun: ...

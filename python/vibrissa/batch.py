@@ -30,8 +30,18 @@ import numpy as np
 from . import _vibrissa
 from ._vibrissa import Status
 
-#: Status names indexed by the integer codes in :attr:`BatchResult.status`.
-STATUS_NAMES = tuple(s.label for s in sorted(Status.__members__.values(), key=int))
+#: Status code of a batch frame whose input was refused (one past the :class:`Status` values): its numbers are
+#: NaN and :attr:`BatchResult.errors` holds its message.
+INVALID_INPUT = len(Status.__members__)
+
+#: Status names indexed by the integer codes in :attr:`BatchResult.status` (the last is ``"invalid_input"``).
+STATUS_NAMES = tuple(s.label for s in sorted(Status.__members__.values(), key=int)) + ("invalid_input",)
+
+#: What a batch does with a frame whose input is refused: "record" (the default) solves every other frame and
+#: lists it in :attr:`BatchResult.errors` (status ``invalid_input``, NaN numbers, one UserWarning per batch),
+#: as ``vibrissa solve --jsonl`` does; "raise" raises the first one's error (ValueError naming the series
+#: and frame), the behaviour before issue 23.
+ON_ERROR = ("record", "raise")
 
 #: The release that removes the deprecated names (docs/python.md, "Deprecated names").
 DEPRECATED_NAMES_REMOVED_IN = "0.2.0"
@@ -85,17 +95,20 @@ class BatchResult:
     * ``normal_force``, ``edge_force`` [N] (L): NaN where the mode does not define them
     * ``state`` (L, 4): ``(force_x, force_y, force_z, arc_length)``, the warm-start unknowns
     * ``shape_W`` (L, N+1, 3) world [m] when the batch was called with ``shapes=True``, else None
+    * ``errors``: one ``(series, frame, message)`` per frame whose input was refused (status
+      ``invalid_input``, its numbers NaN); empty when every frame was solved
 
     ``contact_point``, ``force``, ``moment`` and ``shape`` are deprecated aliases of the ``_W`` names (they
     emit a DeprecationWarning and are removed in 0.2.0).
     """
 
     __slots__ = ("status", "force_magnitude", "arc_length", "angle", "contact_point_W", "force_W", "moment_W",
-                 "whisker_frame", "normal_force", "edge_force", "residual", "iterations", "state", "shape_W")
+                 "whisker_frame", "normal_force", "edge_force", "residual", "iterations", "state", "shape_W",
+                 "errors")
 
     def __init__(self, d: dict):
         for k in self.__slots__:
-            v = d[k]
+            v = d.get(k, []) if k == "errors" else d[k]
             setattr(self, k, BatchWhiskerFrame(v) if k == "whisker_frame" else v)
 
     @property
@@ -155,24 +168,52 @@ class BatchResult:
 WhiskerArg = Union["_vibrissa.Whisker", Sequence["_vibrissa.Whisker"]]
 
 
+def _where(series: int, frame: int) -> str:
+    return f"series {series}, frame {frame}"
+
+
+def _finish(d: dict, on_error: str, function: str) -> BatchResult:
+    """The batch's result, or (on_error="raise") the first refused frame's error."""
+    raw, kinds = d.pop("errors"), d.pop("error_kinds")
+    errors = [(int(s), int(f), str(m)) for s, f, m in raw]
+    if errors and on_error == "raise":
+        s, f, message = errors[0]
+        raise (ValueError if kinds[0] == "ValueError" else RuntimeError)(
+            f"{message} ({_where(s, f)})")
+    d["errors"] = errors
+    if errors:
+        s, f, message = errors[0]
+        warnings.warn(f"{function}: {len(errors)} of {np.size(d['status'])} frames refused (status "
+                      f"invalid_input, see BatchResult.errors); the first, {_where(s, f)}: {message}",
+                      UserWarning, stacklevel=3)
+    return BatchResult(d)
+
+
+def _check_on_error(on_error: str) -> str:
+    if on_error not in ON_ERROR:
+        raise ValueError(f"on_error must be one of {list(ON_ERROR)}, got {on_error!r}")
+    return on_error
+
+
 def solve_force_batch(whisker: WhiskerArg, force: Any, arc_length: Any, angle: Any = None, *,
                       pose_base: Any = None, pose_angles: Any = None,
                       options: Optional[_vibrissa.SolveOptions] = None, shapes: bool = False,
-                      threads: Optional[int] = None, progress: Any = None) -> BatchResult:
+                      threads: Optional[int] = None, progress: Any = None, on_error: str = "record") -> BatchResult:
     """Force mode for many frames (see :func:`solve_force`): ``force`` [N], ``arc_length`` [m] and ``angle``
     [rad] are numbers, (F,) or (S, F). Frames are independent and run in parallel.
 
     ``pose_base`` (..., 3) [m] and ``pose_angles`` (..., 3) = (theta, phi, zeta) [rad] re-place the whisker
     per frame. ``shapes=True`` also returns the deflected shapes."""
-    return BatchResult(_vibrissa.solve_force_batch(
+    _check_on_error(on_error)
+    return _finish(_vibrissa.solve_force_batch(
         whisker, force, arc_length, angle, pose_base=pose_base, pose_angles=pose_angles, options=options,
-        shapes=shapes, threads=threads, progress=progress))
+        shapes=shapes, threads=threads, progress=progress), on_error, "solve_force_batch")
 
 
 def solve_point_batch(whisker: WhiskerArg, points_W: Any = _UNSET, *, arc_length_hint: Any = None,
                       edge_direction_W: Any = _UNSET, pose_base: Any = None, pose_angles: Any = None,
                       options: Optional[_vibrissa.SolveOptions] = None, warm_start: bool = True,
-                      shapes: bool = False, threads: Optional[int] = None, progress: Any = None,
+                      shapes: bool = False, threads: Optional[int] = None, progress: Any = None, on_error: str = "record",
                       **deprecated: Any) -> BatchResult:
     """Contact-point mode for many frames (see :func:`solve_point`): ``points_W`` (F, 3) or (S, F, 3) world
     [m]. ``arc_length_hint`` [m] (number, (F,) or (S, F)); ``edge_direction_W`` ((3,), (F, 3) ...) splits the
@@ -180,17 +221,18 @@ def solve_point_batch(whisker: WhiskerArg, points_W: Any = _UNSET, *, arc_length
     The keywords ``points`` and ``edge_direction`` are deprecated aliases (removed in 0.2.0)."""
     a = _renamed_args("solve_point_batch", {"points_W": points_W, "edge_direction_W": edge_direction_W},
                       deprecated, {"points": "points_W", "edge_direction": "edge_direction_W"})
-    return BatchResult(_vibrissa.solve_point_batch(
+    _check_on_error(on_error)
+    return _finish(_vibrissa.solve_point_batch(
         whisker, a["points_W"], arc_length_hint=arc_length_hint, edge_direction_W=a["edge_direction_W"],
         pose_base=pose_base, pose_angles=pose_angles, options=options, warm_start=warm_start, shapes=shapes,
-        threads=threads, progress=progress))
+        threads=threads, progress=progress), on_error, "solve_point_batch")
 
 
 def solve_edge_batch(whisker: WhiskerArg, edge_points_W: Any = _UNSET, edge_directions_W: Any = _UNSET, *,
                      arc_length_hint: Any = None, approach_W: Any = _UNSET, pose_base: Any = None,
                      pose_angles: Any = None, options: Optional[_vibrissa.SolveOptions] = None,
                      warm_start: bool = True, shapes: bool = False, threads: Optional[int] = None,
-                     progress: Any = None, **deprecated: Any) -> BatchResult:
+                     progress: Any = None, on_error: str = "record", **deprecated: Any) -> BatchResult:
     """Edge mode (frictionless) for many frames (see :func:`solve_edge`): the edge of frame f passes through
     ``edge_points_W[f]`` [m] along ``edge_directions_W[f]`` (default world +z; (3,) for a fixed direction).
     ``approach_W`` gives the direction the whisker moves into the edge (else no_contact). The keywords
@@ -199,17 +241,18 @@ def solve_edge_batch(whisker: WhiskerArg, edge_points_W: Any = _UNSET, edge_dire
                                            "approach_W": approach_W},
                       deprecated, {"edge_points": "edge_points_W", "edge_directions": "edge_directions_W",
                                    "approach": "approach_W"})
-    return BatchResult(_vibrissa.solve_edge_batch(
+    _check_on_error(on_error)
+    return _finish(_vibrissa.solve_edge_batch(
         whisker, a["edge_points_W"], a["edge_directions_W"], arc_length_hint=arc_length_hint,
         approach_W=a["approach_W"], pose_base=pose_base, pose_angles=pose_angles, options=options,
-        warm_start=warm_start, shapes=shapes, threads=threads, progress=progress))
+        warm_start=warm_start, shapes=shapes, threads=threads, progress=progress), on_error, "solve_edge_batch")
 
 
 def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points_W: Any = _UNSET, edge_directions_W: Any = _UNSET,
                                 mu: float = 0.0, *, initial_contact_W: Any = _UNSET, approach_W: Any = _UNSET,
                                 pose_base: Any = None, pose_angles: Any = None,
                                 options: Optional[_vibrissa.SolveOptions] = None, shapes: bool = False,
-                                threads: Optional[int] = None, progress: Any = None,
+                                threads: Optional[int] = None, progress: Any = None, on_error: str = "record",
                                 **deprecated: Any) -> BatchResult:
     """Frictional edge mode (Coulomb ``mu``) along time series (see :func:`solve_frictional_edge`).
 
@@ -223,7 +266,8 @@ def solve_frictional_edge_batch(whisker: WhiskerArg, edge_points_W: Any = _UNSET
                        "initial_contact_W": initial_contact_W, "approach_W": approach_W},
                       deprecated, {"edge_points": "edge_points_W", "edge_directions": "edge_directions_W",
                                    "initial_contact": "initial_contact_W", "approach": "approach_W"})
-    return BatchResult(_vibrissa.solve_frictional_edge_batch(
+    _check_on_error(on_error)
+    return _finish(_vibrissa.solve_frictional_edge_batch(
         whisker, a["edge_points_W"], a["edge_directions_W"], mu, initial_contact_W=a["initial_contact_W"],
         approach_W=a["approach_W"], pose_base=pose_base, pose_angles=pose_angles, options=options,
-        shapes=shapes, threads=threads, progress=progress))
+        shapes=shapes, threads=threads, progress=progress), on_error, "solve_frictional_edge_batch")

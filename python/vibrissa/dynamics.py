@@ -28,11 +28,11 @@ def _settings(density, damping_ratio, joint_damping_time, gravity, **rest):
     return json.dumps(out)
 
 
-def modes(whisker, count=10, *, load=None, contact=None, density=None, damping_ratio=None,
+def modes(whisker, count=10, *, load=None, hold=None, density=None, damping_ratio=None,
           joint_damping_time=None):
     """The ``count`` lowest natural modes of ``whisker`` (second-order scheme) about its rest shape, or with
     ``load`` (a dict as the ``"load"`` of ``vibrissa solve``: force, dead_load, point, edge, frictional_edge,
-    object) about its equilibrium under that load; ``contact`` ("stick" or "slip") overrides how a contact holds
+    object) about its equilibrium under that load; ``hold`` ("stick" or "slip") overrides how a contact holds
     (docs/dynamics.md). Returns ``frequency`` and ``damped_frequency`` [Hz], ``damping_ratio``,
     ``torsion_fraction`` (NumPy arrays, one value per mode), ``joint_shapes`` (3N, modes), ``node_shapes``
     (modes, N+1, 3; node displacements in the whisker frame, largest 1) and ``equilibrium`` (a dict: the held
@@ -40,7 +40,7 @@ def modes(whisker, count=10, *, load=None, contact=None, density=None, damping_r
     ratio 0.14 (Hartmann et al. 2003); ``joint_damping_time`` [s] sets the joint dampers instead
     (ζ_n = β ω_n / 2 about rest)."""
     m, eq = _modes(whisker, _settings(density, damping_ratio, joint_damping_time, None, load=load,
-                                      contact=contact), int(count))
+                                      hold=hold), int(count))
     view = _ModesView(m, whisker.links)
     view.equilibrium = json.loads(eq) if eq else None
     return view

@@ -29,7 +29,7 @@ class DynamicsResult:
     def write(self, directory: Union[str, PathLike]) -> None: ...
 
 def modes(whisker: Whisker, count: int = 10, *, load: Optional[Mapping[str, Any]] = None,
-          contact: Optional[str] = None, density: Optional[float] = None,
+          hold: Optional[str] = None, density: Optional[float] = None,
           damping_ratio: Optional[float] = None, joint_damping_time: Optional[float] = None) -> _ModesView: ...
 def simulate_dynamics(whisker: Whisker, duration: float = 1.0, output_rate: float = 1000.0, *,
                       whisking: Optional[Mapping[str, Any]] = None, tip_force: Optional[Sequence[float]] = None,

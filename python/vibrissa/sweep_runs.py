@@ -12,6 +12,7 @@ import functools
 import hashlib
 import math
 import pathlib
+import zlib
 
 import numpy as np
 
@@ -174,18 +175,23 @@ def _solve_run(config):
 _RUNNERS = {"array": _array_run, "trial": _trial_run, "solve": _solve_run}
 
 
-def run_chunk(kind, base, runs, variables=None):
+def run_chunk(kind, base, runs, variables=None, on_error="raise"):
     """Runs `runs` ([(run index, {path: value}), ...]) of `kind` on `base`; returns the chunk's results:
     {"runs": [indices], "coords": {name: (dims, attrs, values)}, "variables": {name: (("run", *dims), attrs,
-    values stacked over runs)}, "build": build_id()}. `variables` (names) keeps only those. A run that fails
-    raises its error (ValueError, TypeError, ...) with the run's index and parameters in front."""
-    coords, stacked = None, {}
+    values stacked over runs)}, "failed": [[index, message], ...], "build": build_id()}. `variables` (names)
+    keeps only those. A run that fails raises its error (ValueError, TypeError, ...) with the run's index and
+    parameters in front, or with on_error="record" is listed in "failed" (and not in "runs") and the chunk goes
+    on. KeyboardInterrupt and other non-Exception errors always propagate."""
+    coords, stacked, failed = None, {}, []
     for index, overrides in runs:
         try:
             run_coords, run_variables = _RUNNERS[kind](configured(base, overrides))
         except Exception as error:  # name the run: the message travels back to the client
             where = ", ".join(f"{p}={v!r}" for p, v in overrides.items())
             message = f"sweep run {index} ({where or 'the base configuration'}): {error}"
+            if on_error == "record":
+                failed.append([index, message])
+                continue
             try:
                 renamed = type(error)(message)
             except Exception:
@@ -204,8 +210,34 @@ def run_chunk(kind, base, runs, variables=None):
         _check_same_coordinates(coords, run_coords, index, overrides)
         for name, (dims, attrs, values) in run_variables.items():
             stacked.setdefault(name, (("run", *dims), attrs, []))[2].append(values)
-    out = {name: (dims, attrs, np.stack(values)) for name, (dims, attrs, values) in stacked.items()}
-    return {"runs": [index for index, _ in runs], "coords": coords, "variables": out, "build": build_id()}
+    out, packed = {}, {}
+    for name, (dims, attrs, values) in stacked.items():
+        values = np.stack(values)
+        if values[0].size >= COMPRESS_FROM:
+            packed[name] = (dims, attrs, pack(values))
+        else:
+            out[name] = (dims, attrs, values)
+    done = [index for index, _ in runs if index not in {i for i, _ in failed}]
+    return {"runs": done, "coords": coords or {}, "variables": out, "packed": packed, "failed": failed,
+            "build": build_id()}
+
+
+# Outputs of at least this many values per run are stored compressed, one HDF5 chunk per run (mostly zeros and
+# NaN: they shrink about tenfold). The worker compresses them (`pack`) and the client writes the compressed bytes
+# into sweep.nc as they are (sweep_store): the client, which has one core like each worker, neither receives
+# nor compresses the uncompressed values, so the sweep scales with the workers (docs/sweeps.md, "Scale").
+COMPRESS_FROM = 4096
+COMPRESSION_LEVEL = 1  # zlib level: HDF5's deflate filter at this level (`compression_opts`)
+
+
+def pack(values):
+    """Each run's values (values[i], C order) compressed by zlib at COMPRESSION_LEVEL, the byte stream HDF5's deflate
+    filter writes and reads: {"bytes": uint8 array of every run's stream in turn, "ends": int64 end of each,
+    "dtype": the values' dtype (str), "shape": one run's shape (list)}."""
+    streams = [zlib.compress(np.ascontiguousarray(v).tobytes(), COMPRESSION_LEVEL) for v in values]
+    return {"bytes": np.frombuffer(b"".join(streams), dtype=np.uint8),
+            "ends": np.cumsum([len(stream) for stream in streams], dtype=np.int64),
+            "dtype": values.dtype.str, "shape": list(values.shape[1:])}
 
 
 def _check_same_coordinates(expected, found, index, overrides):

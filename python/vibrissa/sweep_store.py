@@ -1,8 +1,9 @@
 """The output folder of a sweep (docs/sweeps.md, "Files"): written by the client only, each file atomically.
 
     sweep.json              what is swept (kind, base configuration, parameters, variables, chunk size)
-    chunks/chunk-NNNNNN.npz the results of one finished chunk of runs: NumPy arrays stacked over its runs, and
-                            their dimensions and attributes as JSON (`meta`); the client's own bookkeeping
+    chunks/chunk-NNNNNN.npz the results of one finished chunk of runs: NumPy arrays stacked over its runs (large
+                            outputs as each run's zlib stream, sweep_runs.pack), and their dimensions and
+                            attributes as JSON (`meta`); the client's own bookkeeping
     index.json              the finished chunks: a chunk counts as done once it is listed here
     sweep.nc                every result on the sweep's dimensions (netCDF-4: xarray.open_dataset), written
                             once the last chunk is in
@@ -19,10 +20,12 @@ import pathlib
 
 import numpy as np
 
+from .sweep_runs import COMPRESSION_LEVEL
+
 __all__ = ["SweepStore"]
 
 FORMAT = "vibrissa-sweep"
-VERSION = 1
+VERSION = 2  # 2: large outputs stored compressed per run (sweep_runs.pack)
 
 
 @contextlib.contextmanager
@@ -82,25 +85,35 @@ class SweepStore:
         already listed are ignored (a task computed twice is stored once)."""
         if str(chunk) in self.index:
             return
-        self._check_coordinates(result)
+        if result["runs"]:
+            self._check_coordinates(result)
         name = f"chunks/chunk-{chunk:06d}.npz"
         arrays = {f"variable/{n}": values for n, (_, _, values) in result["variables"].items()}
         arrays.update({f"coordinate/{n}": values for n, (_, _, values) in result["coords"].items()})
+        for n, (_, _, packed) in result["packed"].items():
+            arrays.update({f"packed/{n}/bytes": packed["bytes"], f"packed/{n}/ends": packed["ends"]})
         meta = {kind: {n: {"dims": list(dims), "attrs": attrs} for n, (dims, attrs, _) in result[kind].items()}
-                for kind in ("variables", "coords")}
+                for kind in ("variables", "coords", "packed")}
+        for n, (_, _, packed) in result["packed"].items():
+            meta["packed"][n].update(dtype=packed["dtype"], shape=packed["shape"])
         with _replacing(self.directory / name) as tmp, open(tmp, "wb") as f:
             np.savez(f, runs=np.asarray(result["runs"]), meta=np.array(json.dumps(meta)), **arrays)
-        self.index[str(chunk)] = {"file": name, "runs": [min(result["runs"]), max(result["runs"]) + 1],
-                                  "build": result["build"]}
+        failed = result.get("failed", [])
+        every = list(result["runs"]) + [i for i, _ in failed]
+        self.index[str(chunk)] = {"file": name, "runs": [min(every), max(every) + 1], "build": result["build"]}
+        if failed:
+            self.index[str(chunk)]["failed"] = failed
         _write_json(self.directory / "index.json", {"chunks": self.index})
 
     def _load(self, chunk):
-        """The arrays of a chunk file: (runs, {name: values}, {name: values} of coordinates, meta)."""
+        """The arrays of a chunk file: (runs, {name: values}, {name: values} of coordinates, meta, {name: (bytes,
+        ends)} of the packed outputs)."""
         with np.load(self.directory / self.index[chunk]["file"], allow_pickle=False) as f:
             meta = json.loads(str(f["meta"]))
             variables = {n: f[f"variable/{n}"] for n in meta["variables"]}
             coords = {n: f[f"coordinate/{n}"] for n in meta["coords"]}
-            return f["runs"], variables, coords, meta
+            packed = {n: (f[f"packed/{n}/bytes"], f[f"packed/{n}/ends"]) for n in meta["packed"]}
+            return f["runs"], variables, coords, meta, packed
 
     def _check_coordinates(self, result):
         if self._coords is None and self.index:
@@ -124,13 +137,17 @@ class SweepStore:
         import h5py
 
         chunks = sorted(self.index, key=int)
-        _, first, coords, meta = self._load(chunks[0])
+        failed = [entry for c in chunks for entry in self.index[c].get("failed", [])]
+        with_runs = [c for c in chunks if len(self._load(c)[0])]
+        if not with_runs:
+            raise ValueError(f"every run of the sweep failed; the first: {min(failed)[1]}")
+        _, first, coords, meta, _ = self._load(with_runs[0])
         if parameters is not None:
             names = list(parameters)
             shape = tuple(len(v) for v in parameters.values())
         else:
             names, shape = ["run"], (len(runs),)
-        outputs = set(first) | set(coords)
+        outputs = set(first) | set(coords) | set(meta["packed"])
         clash = sorted(set(names) & outputs)
         if clash:
             raise ValueError(f"swept parameter(s) {clash} have the names of outputs: rename them in the sweep")
@@ -152,27 +169,43 @@ class SweepStore:
                         coordinates.append(path)
                 for name, values in coords.items():
                     _write_variable(f, name, meta["coords"][name]["dims"], values, meta["coords"][name]["attrs"])
-                for name, values in first.items():
-                    dims = (*names, *meta["variables"][name]["dims"][1:])
-                    attrs = dict(meta["variables"][name]["attrs"])
+                # Small outputs stored plainly; a packed one as one compressed HDF5 chunk per run, the worker's
+                # zlib stream of that run (HDF5's deflate filter reads it).
+                layouts = [(name, values.dtype, meta["variables"][name], {}) for name, values in first.items()]
+                layouts += [(name, np.dtype(m["dtype"]), m, {"chunks": (1,) * len(names) + tuple(m["shape"]),
+                                                              "compression": "gzip",
+                                                              "compression_opts": COMPRESSION_LEVEL})
+                            for name, m in meta["packed"].items()]
+                for name, dtype, m, layout in sorted(layouts, key=lambda item: item[0]):
+                    attrs = dict(m["attrs"])
                     if coordinates:
                         attrs["coordinates"] = " ".join(coordinates)
-                    # A run's values as one compressed HDF5 chunk when they are many; small ones stored plainly.
-                    layout = ({"chunks": (1,) * len(names) + values.shape[1:], "compression": "gzip",
-                               "compression_opts": 1} if values[0].size >= _COMPRESS_FROM else {})
-                    f.create_variable(name, dims, values.dtype, **layout).attrs.update(attrs)
+                    # A failed run (on_error="record") keeps the fill value, NaN, or -1 for integers, which xarray
+                    # reads as NaN too (the variable becomes float); none without failures (dtypes as before).
+                    fill = None if not failed else (np.nan if dtype.kind == "f" else
+                                                    -1 if dtype.kind in "iu" else None)
+                    f.create_variable(name, (*names, *m["dims"][1:]), dtype, fillvalue=fill,
+                                      **layout).attrs.update(attrs)
+                if self.spec.get("on_error") == "record":  # why each failed run failed ("" for the others)
+                    messages = np.full(shape, "", dtype=object)
+                    for index, message in failed:
+                        messages[np.unravel_index(int(index), shape)] = message
+                    error = f.create_variable("error", tuple(names), h5py.string_dtype())
+                    error.attrs.update({"long_name": "why the run failed (empty: it ran)"})
+                    error[...] = messages
             with h5py.File(tmp, "r+") as f:
                 for chunk in chunks:
-                    run_indices, variables, _, _ = self._load(chunk)
+                    run_indices, variables, _, meta, packed = self._load(chunk)
                     where = [np.unravel_index(int(r), shape) for r in run_indices]
                     for name, values in variables.items():
                         target = f[name]
                         for j, index in enumerate(where):
                             target[index] = values[j]
-
-
-# Variables of at least this many values per run are compressed (mostly zeros and NaN: they shrink tenfold).
-_COMPRESS_FROM = 4096
+                    for name, (data, ends) in packed.items():
+                        target, data, starts = f[name], data.tobytes(), [0, *ends[:-1].tolist()]
+                        tail = (0,) * len(meta["packed"][name]["shape"])
+                        for index, a, b in zip(where, starts, ends.tolist()):
+                            target.id.write_direct_chunk(tuple(int(i) for i in index) + tail, data[a:b])
 
 
 # Units of a swept input, read from its key (inputs name their units: docs/formats.md, "Units").

@@ -20,6 +20,9 @@ import sys
 import tempfile
 import threading
 import time
+import warnings
+
+import numpy as np
 
 from .sweep_runs import KINDS, build_id, configured, parameter_path, run_chunk
 from .sweep_store import SweepStore
@@ -47,14 +50,27 @@ def _base_config(kind, base, relative_to):
     if not isinstance(base, dict):
         raise TypeError(f"base must be a dict, a path to a JSON file or None, got {type(base).__name__}")
     base = json.loads(json.dumps(base, default=_json_default))  # a plain copy
-    # Files named in the configuration are found relative to the configuration's folder, as the CLI does.
     if kind == "array":
-        source = base.get("morphology", {}).get("source", "")
-        if source.endswith((".csv", ".json")):
-            base["morphology"]["source"] = str(pathlib.Path(relative_to, source).resolve())
+        # Keys the base omits take the built-in default's values, as in `vibrissa array` (docs/array.md), so a
+        # swept path such as objects.0.point_mm.0 finds the default's peg.
+        from .pipeline import default_array_config
+        base = _over(default_array_config(), base)
+    # Files named in the configuration are found relative to the configuration's folder (the current one for a
+    # dict), as the CLI's readers find them: the same C++ rule (io::resolve_input_paths: a morphology table,
+    # meshes), so the runs find them from any worker's directory.
+    if kind in ("array", "solve"):
+        from . import _vibrissa
+        base = json.loads(_vibrissa._resolve_input_paths(json.dumps(base), str(pathlib.Path(relative_to).resolve())))
     if kind == "trial" and isinstance(base.get("trial"), str):
         base["trial"] = str(pathlib.Path(relative_to, base["trial"]).resolve())
     return base
+
+
+def _over(default, given):
+    """`given` laid over `default`: objects merged key by key, anything else (lists too) taken from `given`."""
+    if not isinstance(default, dict) or not isinstance(given, dict):
+        return given
+    return {**default, **{key: _over(default.get(key), value) for key, value in given.items()}}
 
 
 def _json_default(value):
@@ -92,11 +108,14 @@ def _plan(grid, runs):
     return grid, runs
 
 
-def _check_configurations(kind, base, runs):
+def _check_configurations(kind, base, runs, on_error="raise"):
     """Every run's configuration is read before anything runs (array configs and cases by the C++ readers), so a
-    bad value fails at once with the run and field named, not hours into the sweep."""
+    bad value fails at once with the run and field named, not hours into the sweep. With on_error="record" the
+    refused runs are returned ([(index, message)]; they fail again, recorded, when they run) and only a sweep
+    whose every run is refused raises."""
     from . import _vibrissa
     from .case import load_case
+    refused = []
     for index, overrides in enumerate(runs):
         try:
             config = configured(base, overrides)
@@ -106,11 +125,17 @@ def _check_configurations(kind, base, runs):
                 load_case(config)
         except (ValueError, TypeError, KeyError) as error:
             where = ", ".join(f"{p}={v!r}" for p, v in overrides.items())
-            raise ValueError(f"sweep run {index} ({where or 'the base configuration'}): {error}") from None
+            message = f"sweep run {index} ({where or 'the base configuration'}): {error}"
+            if on_error != "record":
+                raise ValueError(message) from None
+            refused.append((index, message))
+    if refused and len(refused) == len(runs):
+        raise ValueError(refused[0][1])
+    return refused
 
 
 def sweep(kind, base=None, *, grid=None, runs=None, out=None, variables=None, scheduler=None, workers=None,
-          chunk_size=None, progress=None, client=None):
+          chunk_size=None, progress=None, client=None, on_error="record"):
     """Runs every combination of `grid` (or each of `runs`) of `kind` and returns the results as an
     ``xarray.Dataset`` with the swept parameters as dimensions (docs/sweeps.md).
 
@@ -130,8 +155,14 @@ def sweep(kind, base=None, *, grid=None, runs=None, out=None, variables=None, sc
 
     Returns ``xarray.open_dataset(out/"sweep.nc")`` (lazy; ``.load()`` reads it into memory). Ctrl-C stops
     the sweep (the cluster it started is shut down, the finished chunks stay in `out`) and raises
-    KeyboardInterrupt. A run that fails stops the sweep with its error, naming the run and its parameters.
+    KeyboardInterrupt.
+    on_error: "record" (default) goes on after a run that fails or whose configuration is refused: its values
+    are NaN (integer outputs then read as float), the variable ``error`` says why ("" for the runs that ran) and one UserWarning
+    gives the count; a sweep whose every run fails raises. "raise" stops at the first such run with its error,
+    naming the run and its parameters (the behaviour before issue 23).
     """
+    if on_error not in ("record", "raise"):
+        raise ValueError(f"on_error must be one of ['record', 'raise'], got {on_error!r}")
     if kind not in KINDS:
         raise ValueError(f"kind must be one of {list(KINDS)}, got {kind!r}")
     if variables is not None:
@@ -139,20 +170,33 @@ def sweep(kind, base=None, *, grid=None, runs=None, out=None, variables=None, sc
     relative_to = pathlib.Path.cwd()
     base = _base_config(kind, base, relative_to)
     parameters, run_list = _plan(grid, runs)
-    _check_configurations(kind, base, run_list)
+    _check_configurations(kind, base, run_list, on_error)
     if out is None:
         with tempfile.TemporaryDirectory(prefix="vibrissa-sweep-") as folder, \
                 _sweep(kind, base, parameters, run_list, folder, variables, scheduler, workers, chunk_size,
-                       progress, client) as result:
-            return result.load()
-    return _sweep(kind, base, parameters, run_list, out, variables, scheduler, workers, chunk_size, progress, client)
+                       progress, client, on_error) as result:
+            return _warn_failed(result.load())
+    return _warn_failed(_sweep(kind, base, parameters, run_list, out, variables, scheduler, workers, chunk_size,
+                               progress, client, on_error))
 
 
-def _sweep(kind, base, parameters, runs, out, variables, scheduler, workers, chunk_size, progress, client):
+def _warn_failed(result):
+    if "error" in result.variables:
+        messages = [m for m in np.asarray(result["error"].values).ravel().tolist() if m]
+        if messages:
+            warnings.warn(f"sweep: {len(messages)} of {result['error'].size} runs failed (their values are NaN; "
+                          f"the variable 'error' says why); the first: {messages[0]}", UserWarning, stacklevel=3)
+    return result
+
+
+def _sweep(kind, base, parameters, runs, out, variables, scheduler, workers, chunk_size, progress, client,
+           on_error="raise"):
     import xarray as xr
 
     spec = {"kind": kind, "base": base, "grid": parameters, "runs": None if parameters is not None else runs,
             "variables": variables}
+    if on_error == "record":  # part of what the folder holds (the error variable); absent: as before issue 23
+        spec["on_error"] = "record"
     out = pathlib.Path(out)
     stored = _stored_chunk_size(out)
     if chunk_size is None:
@@ -169,7 +213,8 @@ def _sweep(kind, base, parameters, runs, out, variables, scheduler, workers, chu
         if progress is not None:
             progress(done_runs, len(runs))
         if todo or not store.result_path.is_file():
-            for chunk, result in cluster.results(kind, base, chunks, todo, variables, _digest(spec, chunk_size)):
+            for chunk, result in cluster.results(kind, base, chunks, todo, variables, _digest(spec, chunk_size),
+                                                 on_error):
                 if result["build"] != build_id():
                     raise RuntimeError(f"a worker runs vibrissa {result['build']}, this process {build_id()}: "
                                        "install the same build on every worker (results must be bit-identical)")
@@ -179,6 +224,8 @@ def _sweep(kind, base, parameters, runs, out, variables, scheduler, workers, chu
                     progress(done_runs, len(runs))
             store.assemble(parameters, runs, {"format": "vibrissa-sweep", "kind": kind, "vibrissa": build_id(),
                                               "sweep": json.dumps(dict(spec, chunk_size=chunk_size))})
+    from .viewer import _register_accessor
+    _register_accessor()  # result.vibrissa.view(): the viewer of the sweep (docs/viewer.md)
     return xr.open_dataset(store.result_path, engine="h5netcdf")
 
 
@@ -243,14 +290,14 @@ class _Cluster:
             return 1
         return max(1, len(self.client.scheduler_info()["workers"]))
 
-    def results(self, kind, base, chunks, todo, variables, digest):
+    def results(self, kind, base, chunks, todo, variables, digest, on_error="raise"):
         """Yields (chunk, result) as chunks finish; on leaving early (an error, Ctrl-C) cancels the rest."""
         if self.client is None:
             for chunk in todo:
-                yield chunk, run_chunk(kind, base, chunks[chunk], variables)
+                yield chunk, run_chunk(kind, base, chunks[chunk], variables, on_error)
             return
         from dask.distributed import as_completed
-        futures = {self.client.submit(run_chunk, kind, base, chunks[c], variables,
+        futures = {self.client.submit(run_chunk, kind, base, chunks[c], variables, on_error,
                                       key=f"vibrissa-sweep-{digest}-{c}", pure=False): c for c in todo}
         try:
             for future in as_completed(futures):
@@ -304,7 +351,7 @@ def main(argv=None):
         config = json.loads(path.read_text())
         if not isinstance(config, dict):
             raise ValueError("the sweep configuration must be a JSON object")
-        known = {"kind", "base", "grid", "runs", "variables", "chunk_size", "out", "workers", "scheduler"}
+        known = {"kind", "base", "grid", "runs", "variables", "chunk_size", "out", "workers", "scheduler", "on_error"}
         unknown = sorted(set(config) - known)
         if unknown:
             raise ValueError(f"unknown key(s) {unknown} (expected {sorted(known)})")
@@ -327,7 +374,8 @@ def main(argv=None):
         started = time.monotonic()
         result = sweep(config["kind"], base, grid=config.get("grid"), runs=config.get("runs"), out=out,
                        variables=config.get("variables"), scheduler=scheduler, workers=workers,
-                       chunk_size=args.chunk_size or config.get("chunk_size"), progress=_progress_bar(sys.stderr))
+                       chunk_size=args.chunk_size or config.get("chunk_size"), progress=_progress_bar(sys.stderr),
+                       on_error=config.get("on_error", "record"))
     except KeyboardInterrupt:
         print(f"\nvibrissa sweep: interrupted; the finished chunks are in {out}: run the same command to resume",
               file=sys.stderr)

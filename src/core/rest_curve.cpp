@@ -101,14 +101,17 @@ std::vector<Eigen::Vector3d> resample_points(const std::vector<Eigen::Vector3d>&
     return v;
   };
   if (tangent0) *tangent0 = deriv(0.0).normalized();
-  return resample_by_arc_length(eval, deriv, t.back(), links);
+  try {
+    return equal_chord_nodes(eval, deriv, t.back(), std::nullopt, links);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("whisker.points: ") + e.what());
+  }
 }
 
 std::vector<Eigen::Vector3d> planar_polynomial_nodes(double length, double A, double B, int links) {
   auto c = [&](double x) { return Eigen::Vector3d(x, A * x * x * x + B * x * x, 0.0); };
   auto dc = [&](double x) { return Eigen::Vector3d(1.0, 3.0 * A * x * x + 2.0 * B * x, 0.0); };
-  double L = length;  // arc length >= x, so x in [0, length] always suffices
-  return resample_by_arc_length(c, dc, length, links, &L);
+  return equal_chord_nodes(c, dc, length, length, links);  // arc length >= x: x = length is past the tip
 }
 
 Eigen::Matrix3d whisker_frame(const std::vector<Eigen::Vector3d>& nodes, const Eigen::Vector3d& tangent0) {

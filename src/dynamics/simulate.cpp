@@ -10,6 +10,7 @@
 
 #include "vibrissa/core/checks.hpp"
 #include "vibrissa/core/limits.hpp"
+#include "nonlinear_simulate.hpp"
 #include "vibrissa/dynamics/air_drag.hpp"
 
 namespace vibrissa::dynamics {
@@ -33,6 +34,15 @@ std::string_view to_string(SimulationStatus s) {
     case SimulationStatus::completed: return "completed";
     case SimulationStatus::max_steps: return "max_steps";
     case SimulationStatus::step_too_small: return "step_too_small";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(ChainModel m) {
+  switch (m) {
+    case ChainModel::automatic: return "automatic";
+    case ChainModel::linear: return "linear";
+    case ChainModel::nonlinear: return "nonlinear";
   }
   return "unknown";
 }
@@ -94,6 +104,15 @@ TimeSeries simulate(const Whisker& w, const LinearModel& model, const Modes& mod
                     const Eigen::Vector3d& gravity_W, const SimulationOptions& opt, const InitialState& initial,
                     const ExternalLoad& external) {
   validate(opt);
+  const bool nonlinear =
+      opt.model == ChainModel::nonlinear || (opt.model == ChainModel::automatic && !opt.objects.empty());
+  if (!nonlinear && !opt.objects.empty())
+    throw std::invalid_argument("model \"linear\" cannot touch objects (" + std::to_string(opt.objects.size()) +
+                                " given): use \"nonlinear\" or \"automatic\"");
+  if (nonlinear && external)
+    throw std::invalid_argument("air drag (an external load) acts in the linear model only, not yet in the nonlinear "
+                                "chain with objects: set dynamics.air_drag false or model \"linear\"");
+  if (nonlinear) return detail::simulate_nonlinear(w, model, modes, base, gravity_W, opt, initial);
   const Eigen::Index n = model.size(), m = modes.count();
   if (m != n)
     throw std::invalid_argument("simulate needs all " + std::to_string(n) + " modes of the model, got " +

@@ -156,7 +156,8 @@ SimulationConfig load_array_config(const std::filesystem::path& path) {
   return array_config_from_json(read_array_config_json(path), path.parent_path());
 }
 
-SimulationConfig array_config_from_json(const json& j, const std::filesystem::path& base_dir) {
+SimulationConfig array_config_from_json(const json& input, const std::filesystem::path& base_dir) {
+  const json j = io::resolve_input_paths(input, base_dir);  // files named relative to base_dir (json_input.hpp)
   only_keys(j, "", {"morphology", "whisking", "time", "head", "objects", "solver", "output", "threads", "comment",
                     "dynamics"});
   SimulationConfig c;
@@ -172,9 +173,7 @@ SimulationConfig array_config_from_json(const json& j, const std::filesystem::pa
   if (m.contains("phi_method") && source != "towal2011" && source != "towal")
     fail("morphology.phi_method applies only to source 'towal2011', got source '" + quote_text(source) + "'");
   if (source.size() > 4 && (source.ends_with(".csv") || source.ends_with(".json"))) {
-    const std::filesystem::path p = std::filesystem::path(source).is_absolute() ? std::filesystem::path(source)
-                                                                              : base_dir / source;
-    c.morphology = read_morphology_table(p);
+    c.morphology = read_morphology_table(std::filesystem::path(source));  // made absolute above
   } else {
     c.morphology = morphology_by_name(source, sides, phi_method);
   }

@@ -76,7 +76,7 @@ DynamicsCase dynamics_case_from_json(const json& j) {
 
 DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
   only_keys(j, "", {"whisker", "dynamics", "whisking", "initial", "duration", "output_rate", "relative_tolerance",
-                    "absolute_tolerance", "modes", "load", "contact"});
+                    "absolute_tolerance", "modes", "model", "objects", "contact", "load", "hold"});
   DynamicsCase c(whisker);
   if (j.contains("dynamics")) c.properties = dynamics_properties_from_json(j.at("dynamics"));
   dynamics::validate(c.properties);
@@ -108,6 +108,53 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
       }
     }
   }
+  if (j.contains("model")) {
+    const std::string m = json_string(j.at("model"), "model");
+    if (m == "automatic") c.options.model = dynamics::ChainModel::automatic;
+    else if (m == "linear") c.options.model = dynamics::ChainModel::linear;
+    else if (m == "nonlinear") c.options.model = dynamics::ChainModel::nonlinear;
+    else fail("model must be \"automatic\", \"linear\" or \"nonlinear\", got " + quote_text(m));
+  }
+  if (j.contains("objects")) {
+    const json& list = j.at("objects");
+    if (!list.is_array()) fail("objects must be an array, got " + describe(list));
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const std::string where = "objects[" + std::to_string(k) + "]";
+      const json& o = list[k];
+      only_keys(o, where, {"type", "point", "direction", "radius", "thickness", "friction_coefficient"});
+      const std::string type = o.contains("type") ? json_string(o.at("type"), where + ".type") : "";
+      if (type != "edge" && type != "peg") fail(where + ".type must be \"edge\" or \"peg\", got " + quote_text(type));
+      if (!o.contains("point")) fail(where + " needs \"point\" [m]");
+      dynamics::LineObstacle ob;
+      ob.point_W = json_vec3(o.at("point"), where + ".point");
+      ob.direction_W = unit_direction(
+          o.contains("direction") ? json_vec3(o.at("direction"), where + ".direction") : Eigen::Vector3d::UnitZ(),
+          where + ".direction");
+      if (type == "peg") {
+        if (!o.contains("radius")) fail(where + " (a peg) needs \"radius\" [m]");
+        ob.radius = json_number(o.at("radius"), where + ".radius");
+        if (!(ob.radius >= 0.0)) fail(where + ".radius must be >= 0 [m], got " + format_value(ob.radius));
+        ob.thickness = o.contains("thickness") ? json_bool(o.at("thickness"), where + ".thickness") : true;
+      } else if (o.contains("radius") || o.contains("thickness")) {
+        fail(where + ": an edge has no radius or thickness (its centre line touches the whisker's)");
+      }
+      ob.friction_coefficient = number_or(o, "friction_coefficient", where, 0.0);
+      if (!(ob.friction_coefficient >= 0.0))
+        fail(where + ".friction_coefficient must be >= 0, got " + format_value(ob.friction_coefficient));
+      c.options.objects.push_back(ob);
+    }
+  }
+  if (j.contains("contact")) {
+    const json& k = j.at("contact");
+    only_keys(k, "contact", {"stiffness", "tangential_stiffness", "damping_ratio"});
+    c.options.contact.stiffness = number_or(k, "stiffness", "contact", c.options.contact.stiffness);
+    c.options.contact.tangential_stiffness =
+        number_or(k, "tangential_stiffness", "contact", c.options.contact.tangential_stiffness);
+    c.options.contact.damping_ratio = number_or(k, "damping_ratio", "contact", c.options.contact.damping_ratio);
+    dynamics::validate(c.options.contact);
+  }
+  if (c.options.model == dynamics::ChainModel::linear && !c.options.objects.empty())
+    fail("model \"linear\" cannot touch objects: use \"nonlinear\" or leave \"model\" out");
   c.options.duration = number_or(j, "duration", "", c.options.duration);
   c.options.output_rate = number_or(j, "output_rate", "", c.options.output_rate);
   c.options.relative_tolerance = number_or(j, "relative_tolerance", "", c.options.relative_tolerance);
@@ -120,12 +167,12 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
       fail("load.mode \"base_wrench\" has no load to hold for modes: use force, dead_load, point, edge, "
            "frictional_edge or object");
   }
-  if (j.contains("contact")) {
-    if (!c.load) fail("\"contact\" needs a \"load\"");
-    const std::string m = json_string(j.at("contact"), "contact");
-    if (m == "stick") c.contact = dynamics::ContactModel::stick;
-    else if (m == "slip") c.contact = dynamics::ContactModel::slip;
-    else fail("contact must be \"stick\" or \"slip\", got " + quote_text(m));
+  if (j.contains("hold")) {
+    if (!c.load) fail("\"hold\" needs a \"load\"");
+    const std::string m = json_string(j.at("hold"), "hold");
+    if (m == "stick") c.hold = dynamics::ContactModel::stick;
+    else if (m == "slip") c.hold = dynamics::ContactModel::slip;
+    else fail("hold must be \"stick\" or \"slip\", got " + quote_text(m));
   }
   return c;
 }
@@ -182,7 +229,7 @@ CaseModes case_modes(const DynamicsCase& c, int count) {
   h.force_B = R_BW * sol.force_W;
   h.contact_point_B = R_BW * (sol.contact_point_W - w.placement().p_W_base);
   // How each load holds (docs/dynamics.md): forces keep their force; a point contact sticks; an edge or
-  // object contact slips unless the frictional solve stuck; "contact" overrides.
+  // object contact slips unless the frictional solve stuck; "hold" overrides.
   std::optional<Eigen::Vector3d> normal_W;
   std::visit(
       [&](const auto& l) {
@@ -204,11 +251,11 @@ CaseModes case_modes(const DynamicsCase& c, int count) {
         }
       },
       *c.load);
-  if (c.contact) {
+  if (c.hold) {
     if (h.contact == dynamics::ContactModel::none)
-      throw std::invalid_argument("\"contact\" applies to contact loads (point, edge, frictional_edge, object), "
+      throw std::invalid_argument("\"hold\" applies to contact loads (point, edge, frictional_edge, object), "
                                   "not to a force");
-    h.contact = *c.contact;
+    h.contact = *c.hold;
   }
   if (normal_W) {
     if (!(normal_W->norm() > 0.0)) throw std::runtime_error("the contact force is zero: no contact normal for modes");
@@ -324,6 +371,17 @@ std::vector<Column> scalar_columns(const dynamics::TimeSeries& ts) {
   vec(ts.tip_displacement_B, "tip_", "_B", "m", "tip displacement from its rest position, whisker frame");
   cols.push_back({"kinetic_energy", ts.kinetic_energy, "J", "kinetic energy relative to the base frame"});
   cols.push_back({"elastic_energy", ts.elastic_energy, "J", "elastic energy of the joints"});
+  for (std::size_t o = 0; o < ts.contacts.size(); ++o) {
+    const dynamics::ContactChannels& ch = ts.contacts[o];
+    const std::string p = "contact" + std::to_string(o) + "_", who = "object " + std::to_string(o);
+    std::vector<double> state(n);
+    for (std::size_t i = 0; i < n; ++i) state[i] = static_cast<double>(static_cast<int>(ch.state[i]));
+    cols.push_back({p + "state", std::move(state), "1", who + ": contact state, 0 none, 1 stick, 2 slip"});
+    cols.push_back({p + "s", ch.arc_length, "m", who + ": arc length of the whisker's nearest point"});
+    cols.push_back({p + "gap", ch.gap, "m", who + ": gap to the surface (< 0: penetration)"});
+    vec(ch.point_W, p, "_W", "m", who + ": whisker's nearest point, world frame");
+    vec(ch.force_W, p + "F", "_W", "N", who + ": contact force on the whisker, world frame");
+  }
   return cols;
 }
 
@@ -370,10 +428,18 @@ json dynamics_summary(const dynamics::TimeSeries& ts, const dynamics::Modes& mod
   j["peak_FT_uN"] = FT * 1e6;
   j["peak_MB_uNm"] = MB * 1e6;
   j["peak_tip_displacement_mm"] = tip * 1e3;
-  // The model is linear about the rest shape (docs/dynamics.md): say so when the deflection leaves that range.
+  j["model"] = std::string(to_string(ts.model));
+  j["max_penetration_m"] = ts.max_penetration;
+  json events = json::array();
+  for (const dynamics::ContactEvent& e : ts.events)
+    events.push_back({{"time", e.time}, {"type", std::string(to_string(e.type))}, {"object", e.object},
+                      {"arc_length", e.arc_length}, {"point_W", {e.point_W.x(), e.point_W.y(), e.point_W.z()}},
+                      {"force_W", {e.force_W.x(), e.force_W.y(), e.force_W.z()}}});
+  j["events"] = std::move(events);
+  // The linear model holds about the rest shape (docs/dynamics.md): say so when the deflection leaves that range.
   json warnings = json::array();
   const double L = c.whisker.length();
-  if (tip > 0.05 * L)
+  if (ts.model == dynamics::ChainModel::linear && tip > 0.05 * L)
     warnings.push_back("the tip moved up to " + format_value(tip * 1e3) + " mm from rest, " +
                        format_value(std::round(1000.0 * tip / L) / 10.0) +
                        " % of the whisker's length: beyond the small deflections the linearised model assumes "
@@ -400,6 +466,16 @@ void write_dynamics_outputs(const dynamics::TimeSeries& ts, const json& summary,
       out << "\n";
     }
   });
+  if (!ts.contacts.empty())
+    folder.stage_text("events.csv", [&](std::ostream& out) {
+      out << "time,type,object,arc_length,x_W,y_W,z_W,Fx_W,Fy_W,Fz_W\n";
+      for (const dynamics::ContactEvent& e : ts.events) {
+        out << csv::cell(e.time) << "," << to_string(e.type) << "," << e.object << "," << csv::cell(e.arc_length);
+        for (int a = 0; a < 3; ++a) out << "," << csv::cell(e.point_W(a));
+        for (int a = 0; a < 3; ++a) out << "," << csv::cell(e.force_W(a));
+        out << "\n";
+      }
+    });
   const LabelledData data = dynamics_data(ts);
   folder.stage("dynamics.h5", [&](const std::string& tmp) { write_labelled_h5(data, tmp); });
   stage_json_file(folder, "summary.json", summary);

@@ -5,10 +5,13 @@
 #if defined(__linux__)
 #include <dirent.h>
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #endif
@@ -64,7 +67,7 @@ bool single_threaded() {
 }
 
 void probe_in_child(const std::string& path, std::string_view library, void (*read)(const void* context),
-                    const void* context) {
+                    const void* context, double timeout_s) {
   if (!single_threaded()) return;
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) return;
@@ -78,6 +81,13 @@ void probe_in_child(const std::string& path, std::string_view library, void (*re
   if (pid == 0) {
     ::close(fds[0]);
     default_handled_signals();
+    // The library's own words (assimp's "ai_assert failure ...", HDF5's diagnostics) stay in the child: the
+    // parent reports the outcome.
+    if (const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC); null >= 0) {
+      ::dup2(null, STDOUT_FILENO);
+      ::dup2(null, STDERR_FILENO);
+      ::close(null);
+    }
     char outcome = kReturned;
     try {
       read(context);
@@ -90,6 +100,27 @@ void probe_in_child(const std::string& path, std::string_view library, void (*re
   ::close(fds[1]);
   // The outcome travels through the pipe, so the guard holds even where the child cannot be waited for (a
   // process that ignores SIGCHLD has its children reaped at once).
+  if (timeout_s > 0.0) {  // wait for the outcome (or the child's end: EOF) at most timeout_s
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    for (;;) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      pollfd p{fds[0], POLLIN, 0};
+      const int ready = left.count() > 0 ? ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000))) : 0;
+      if (ready > 0) break;
+      if (ready < 0 && errno == EINTR) continue;
+      if (ready < 0 || std::chrono::steady_clock::now() >= deadline) {
+        ::kill(pid, SIGKILL);
+        ::close(fds[0]);
+        int ignored = 0;
+        while (::waitpid(pid, &ignored, 0) < 0 && errno == EINTR) {
+        }
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.2g", timeout_s);
+        throw std::invalid_argument(corrupt(path, library, std::string("did not finish reading this file within ") +
+                                                               seconds + " s (a malformed file can make it loop)"));
+      }
+    }
+  }
   char outcome = 0;
   ssize_t got;
   while ((got = ::read(fds[0], &outcome, 1)) < 0 && errno == EINTR) {
@@ -115,7 +146,7 @@ void probe_in_child(const std::string& path, std::string_view library, void (*re
 }
 #else
 bool single_threaded() { return false; }
-void probe_in_child(const std::string&, std::string_view, void (*)(const void*), const void*) {}
+void probe_in_child(const std::string&, std::string_view, void (*)(const void*), const void*, double) {}
 #endif
 
 }  // namespace vibrissa::io

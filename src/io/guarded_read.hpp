@@ -17,16 +17,18 @@ namespace vibrissa::io {
 /// std::invalid_argument naming `path` and `library` if the child crashed (SIGSEGV, SIGBUS, SIGFPE, SIGILL,
 /// SIGABRT, SIGSYS, SIGTRAP) or ended without reporting (a sanitizer's exit, a library's exit()), and
 /// std::runtime_error if another signal ended it (Ctrl-C, a kill, the out-of-memory killer). Returns at once,
-/// without the guard, in a process with more than one thread, where fork fails, or off Linux.
+/// without the guard, in a process with more than one thread, where fork fails, or off Linux. With
+/// `timeout_s` > 0 a child still reading after that many seconds is killed and std::invalid_argument says so
+/// (a malformed file can make a library loop: assimp on a truncated PLY header).
 void probe_in_child(const std::string& path, std::string_view library, void (*read)(const void* context),
-                    const void* context);
+                    const void* context, double timeout_s = 0.0);
 
 /// `read()` (a callable returning the file's contents), after probe_in_child() has read the file once in a
 /// child process.
 template <class Read>
-auto guarded_read(const std::string& path, std::string_view library, const Read& read) {
+auto guarded_read(const std::string& path, std::string_view library, const Read& read, double timeout_s = 0.0) {
   probe_in_child(
-      path, library, [](const void* r) { (void)(*static_cast<const Read*>(r))(); }, &read);
+      path, library, [](const void* r) { (void)(*static_cast<const Read*>(r))(); }, &read, timeout_s);
   return read();
 }
 

@@ -116,4 +116,35 @@ std::vector<double> json_numbers(const nlohmann::json& j, std::string_view field
   return out;
 }
 
+std::filesystem::path resolve_input_path(const std::filesystem::path& name, const std::filesystem::path& base_dir) {
+  if (name.empty() || name.is_absolute()) return name;
+  return std::filesystem::absolute(base_dir.empty() ? name : base_dir / name).lexically_normal();
+}
+
+nlohmann::json resolve_input_paths(nlohmann::json input, const std::filesystem::path& base_dir) {
+  if (!input.is_object()) return input;
+  auto resolve = [&](nlohmann::json& holder, const char* key) {
+    if (holder.is_object() && holder.contains(key) && holder[key].is_string())
+      holder[key] = resolve_input_path(holder[key].get<std::string>(), base_dir).string();
+  };
+  auto is_mesh = [](const nlohmann::json& o) {
+    return o.is_object() && o.contains("type") && o["type"].is_string() && o["type"].get<std::string>() == "mesh";
+  };
+  if (input.contains("morphology") && input["morphology"].is_object()) {
+    nlohmann::json& m = input["morphology"];
+    if (m.contains("source") && m["source"].is_string()) {
+      const std::string source = m["source"].get<std::string>();
+      if (source.size() > 4 && (source.ends_with(".csv") || source.ends_with(".json"))) resolve(m, "source");
+    }
+  }
+  if (input.contains("objects") && input["objects"].is_array())
+    for (nlohmann::json& o : input["objects"])
+      if (is_mesh(o)) resolve(o, "file");
+  if (input.contains("load") && input["load"].is_object() && input["load"].contains("object") &&
+      is_mesh(input["load"]["object"]))
+    resolve(input["load"]["object"], "file");
+  return input;
+}
+
 }  // namespace vibrissa::io
+

@@ -82,7 +82,7 @@ std::shared_ptr<const Shape> shape_from_json(const json& j, const std::string& w
   if (type == "mesh") {
     r.only({"file", "file_unit", L("translation"), "rotation"}, extra_keys);
     std::filesystem::path file = json_string(r.at("file"), r.field("file"));
-    if (file.is_relative() && !base_dir.empty()) file = base_dir / file;
+    if (!base_dir.empty()) file = resolve_input_path(file, base_dir);  // the rule of json_input.hpp
     const double unit =
         j.contains("file_unit") ? trial::length_scale(json_string(j.at("file_unit"), r.field("file_unit")), r.field("file_unit")) : 1.0;
     ObjectPose pose;

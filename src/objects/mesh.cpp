@@ -180,29 +180,55 @@ SurfacePoint Mesh::nearest(const Eigen::Vector3d& p) const {
       nonzero = i;
     }
   }
-  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const int code = zeros == 0 ? 0 : zeros == 1 ? 1 + zero : 4 + nonzero;
+  return feature_point(p, q, f, code);
+}
+
+SurfacePoint Mesh::feature_point(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::size_t f, int code) const {
+  const auto& tri = triangles_[f];
   Eigen::Vector3d pseudo;
   Eigen::Matrix3d J;
   SurfaceFeature feature;
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();
-  if (zeros == 0) {
+  if (code == 0) {
     feature = SurfaceFeature::face;
     pseudo = face_normal_[f];
-    J = I - pseudo * pseudo.transpose();
-  } else if (zeros == 1) {
+    J = Eigen::Matrix3d::Identity() - pseudo * pseudo.transpose();
+  } else if (code < 4) {
+    const int i = code - 1;
     feature = SurfaceFeature::edge;
-    pseudo = edge_normal_[f][zero];
-    direction = (vertices_[tri[(zero + 2) % 3]] - vertices_[tri[(zero + 1) % 3]]).normalized();
+    pseudo = edge_normal_[f][static_cast<std::size_t>(i)];
+    direction = (vertices_[tri[(i + 2) % 3]] - vertices_[tri[(i + 1) % 3]]).normalized();
     J = direction * direction.transpose();
   } else {
     feature = SurfaceFeature::vertex;
-    pseudo = vertex_normal_[tri[nonzero]];
+    pseudo = vertex_normal_[tri[code - 4]];
     J.setZero();
   }
   const double sign = (p - q).dot(pseudo) >= 0.0 ? 1.0 : -1.0;
   SurfacePoint s = detail::surface_point(p, q, J, sign, pseudo, feature);
   s.edge_direction = direction;
+  s.feature_id = static_cast<std::int64_t>(8 * f) + code;
   return s;
+}
+
+SurfacePoint Mesh::nearest_on_feature(const Eigen::Vector3d& p, std::int64_t feature_id) const {
+  const auto f = static_cast<std::size_t>(feature_id / 8);
+  const int code = static_cast<int>(feature_id % 8);
+  if (feature_id < 0 || f >= triangles_.size() || code > 6) return nearest(p);
+  const auto& tri = triangles_[f];
+  Eigen::Vector3d q;
+  if (code == 0) {
+    const Eigen::Vector3d& n = face_normal_[f];
+    q = p - (p - vertices_[tri[0]]).dot(n) * n;
+  } else if (code < 4) {
+    const Eigen::Vector3d& a = vertices_[tri[code % 3]];
+    const Eigen::Vector3d d = (vertices_[tri[(code + 1) % 3]] - a).normalized();
+    q = a + (p - a).dot(d) * d;
+  } else {
+    q = vertices_[tri[code - 4]];
+  }
+  return feature_point(p, q, f, code);
 }
 
 ShapeDescription Mesh::describe() const {

@@ -58,6 +58,7 @@ struct Match {
   Eigen::Vector2d other_px; ///< the matched pixel on the other view's polyline (measured pixels)
   double own_arc, other_arc;  ///< relative arc lengths in both views
   double other_likelihood;
+  Eigen::Vector2d other_tangent;  ///< unit direction of the other view's polyline there (ideal pixels)
 };
 
 /// Where the epipolar line `l` (unit normal, ideal pixels) crosses the view's curve extended beyond its base
@@ -157,7 +158,8 @@ std::vector<Match> match_views(const ViewPoints& own, const ViewPoints& other, c
       }
       best_gap = gap;
       const double tl = std::clamp(t, 0.0, 1.0);
-      best = Match{i, px, own.arc[i], arc, other.likelihood[j] + tl * (other.likelihood[j + 1] - other.likelihood[j])};
+      best = Match{i, px, own.arc[i], arc, other.likelihood[j] + tl * (other.likelihood[j + 1] - other.likelihood[j]),
+                   (other.ideal[j + 1] - other.ideal[j]) / seg};
     }
     if (best) candidates.push_back(*best);
   }
@@ -209,53 +211,133 @@ void closest_approach(ReconstructedFrame& f, const std::vector<Edge>& edges, dou
   if (!f.contact) f.contact_W = nan3;
 }
 
-ReconstructedFrame reconstruct_frame(std::int64_t frame, const TrackFrame* top, const Camera& top_cam,
-                                     const TrackFrame* front, const Camera& front_cam, const Eigen::Matrix3d& F,
+/// A point seen at `ideal[0]` by the reference camera and on the curves of the other views near `ideal[k]`
+/// (k >= 1), whose directions there are `tangent[k]`: the least-squares point of the reference pixel (2D) and of
+/// the distances across each other curve (1D), by Gauss-Newton from `start`. Where a point lies along another
+/// view's curve is only known through the epipolar intersection, which carries the reference view's noise and
+/// is ill-conditioned where the epipolar line is nearly tangent to the curve; with one other view the solution
+/// is the pair's triangulation (the intersection lies on the epipolar line), with more it uses only what each
+/// view measures.
+Eigen::Vector3d refine_on_curves(const std::vector<const Camera*>& cams, const std::vector<Eigen::Vector2d>& ideal,
+                                 const std::vector<Eigen::Vector2d>& tangent, Eigen::Vector3d X) {
+  for (int it = 0; it < 10; ++it) {
+    Eigen::Matrix3d JtJ = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d Jtr = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < cams.size(); ++k) {
+      const Eigen::Matrix<double, 3, 4>& P = cams[k]->P;
+      const Eigen::Vector3d h = P * X.homogeneous();
+      const Eigen::Vector2d x = h.head<2>() / h.z();
+      Eigen::Matrix<double, 2, 3> J;
+      J.row(0) = (P.block<1, 3>(0, 0) - x.x() * P.block<1, 3>(2, 0)) / h.z();
+      J.row(1) = (P.block<1, 3>(1, 0) - x.y() * P.block<1, 3>(2, 0)) / h.z();
+      const Eigen::Vector2d r = x - ideal[k];
+      if (k == 0) {
+        JtJ += J.transpose() * J;
+        Jtr += J.transpose() * r;
+      } else {
+        const Eigen::Vector2d n(-tangent[k].y(), tangent[k].x());
+        const Eigen::RowVector3d Jn = n.transpose() * J;
+        JtJ += Jn.transpose() * Jn;
+        Jtr += Jn.transpose() * n.dot(r);
+      }
+    }
+    const Eigen::Vector3d step = JtJ.ldlt().solve(-Jtr);
+    if (!step.allFinite()) break;
+    X += step;
+    if (step.norm() <= 1e-15 * std::max(1.0, X.norm())) break;
+  }
+  return X;
+}
+
+/// Fundamental matrices of every ordered pair of views: x_j^T F[i][j] x_i = 0 (ideal pixels).
+using PairMatrices = std::vector<std::vector<Eigen::Matrix3d>>;
+
+ReconstructedFrame reconstruct_frame(std::int64_t frame, const std::vector<const TrackFrame*>& tracks,
+                                     const std::vector<View>& views, const PairMatrices& F,
                                      const ReconstructOptions& o) {
   ReconstructedFrame f;
   f.frame = frame;
-  if (!top || !front) return f;
-  const ViewPoints a = usable_points(*top, top_cam, o.min_likelihood);
-  const ViewPoints b = usable_points(*front, front_cam, o.min_likelihood);
+  const std::size_t n_views = views.size();
+  std::vector<ViewPoints> pts(n_views);
+  std::vector<std::size_t> usable;  // views tracked here with at least two usable points
+  std::size_t tracked = 0;
+  for (std::size_t v = 0; v < n_views; ++v) {
+    if (!tracks[v]) continue;
+    ++tracked;
+    pts[v] = usable_points(*tracks[v], views[v].camera, o.min_likelihood);
+    if (pts[v].px.size() >= 2) usable.push_back(v);
+  }
+  if (tracked < 2) return f;
   f.status = FrameStatus::too_few_points;
-  if (a.px.size() < 2 || b.px.size() < 2) return f;
-  // Match both ways (top points on the front polyline and front points on the top polyline), so that a
-  // point lost in one view (e.g. the base) is still reconstructed from the other; order along the whisker.
+  f.views_used = usable.size();
+  if (usable.size() < 2) return f;
+  // The reference view is the first usable one. Each of its points is matched to every other view's polyline
+  // and triangulated from all the views that matched it (N-view DLT + Gauss-Newton: the least-squares point of
+  // every ray, not a pair). Then each other view's points are matched back to the reference polyline, so that
+  // a point the reference lost (e.g. the base) is still reconstructed from that view.
+  const std::size_t r = usable.front();
   struct Point3 {
-    double arc;  ///< mean relative arc length of the two views (orders the points base to tip)
+    double arc;  ///< mean relative arc length over its views (orders the points base to tip)
     Eigen::Vector3d p_W;
-    std::array<Eigen::Vector2d, 2> px;  ///< the pixels it was triangulated from (top, front)
+    std::vector<std::pair<std::size_t, Eigen::Vector2d>> px;  ///< (view, pixel) it was triangulated from
     double likelihood;
   };
   std::vector<Point3> found;
-  double first_arc = std::numeric_limits<double>::infinity(), last_arc = -first_arc;  // of the top matches
-  // A front point counts as beyond an end of the top matches only by more than half a front-view spacing
-  // (relative arc length): a point the top view lost is a whole spacing out, while the views' own end points
-  // differ by pixel noise only, and keeping those of them that happen to fall outside lengthened the curve at
-  // both ends (a base ~0.6 px behind the follicle at 0.5 px noise, and a systematic angle bias).
-  const double beyond_margin = 0.5 / double(b.px.size() - 1);
-  for (const bool from_top : {true, false}) {
-    const ViewPoints& own = from_top ? a : b;
-    for (const Match& m : match_views(own, from_top ? b : a, from_top ? F : Eigen::Matrix3d(F.transpose()))) {
-      const double arc = 0.5 * (m.own_arc + m.other_arc);
-      // Front points only beyond the ends of the top matches: inside, they would repeat the same stretch with
-      // pixel errors shared with the top matches (correlated residuals make the fit follow the noise).
-      if (!from_top && arc >= first_arc - beyond_margin && arc <= last_arc + beyond_margin) continue;
-      const Eigen::Vector2d top_px = from_top ? own.px[m.own] : m.other_px;
-      const Eigen::Vector2d front_px = from_top ? m.other_px : own.px[m.own];
-      const Triangulated t = triangulate({&top_cam, &front_cam}, {top_px, front_px});
-      if (!t.ok) continue;
-      found.push_back({arc, t.p_W, {top_px, front_px}, std::sqrt(own.likelihood[m.own] * m.other_likelihood)});
-      if (from_top) {
-        first_arc = std::min(first_arc, arc);
-        last_arc = std::max(last_arc, arc);
+  std::vector<std::vector<std::pair<std::size_t, Match>>> partners(pts[r].px.size());
+  for (std::size_t u = 1; u < usable.size(); ++u)
+    for (const Match& m : match_views(pts[r], pts[usable[u]], F[r][usable[u]])) partners[m.own].push_back({usable[u], m});
+  double first_arc = std::numeric_limits<double>::infinity(), last_arc = -first_arc;  // of the reference matches
+  for (std::size_t i = 0; i < partners.size(); ++i) {
+    if (partners[i].empty()) continue;
+    std::vector<const Camera*> cams{&views[r].camera};
+    std::vector<Eigen::Vector2d> pix{pts[r].px[i]};
+    Point3 p{pts[r].arc[i], Eigen::Vector3d::Zero(), {{r, pts[r].px[i]}}, std::log(std::max(pts[r].likelihood[i], 1e-300))};
+    for (const auto& [v, m] : partners[i]) {
+      cams.push_back(&views[v].camera);
+      pix.push_back(m.other_px);
+      p.px.push_back({v, m.other_px});
+      p.arc += m.other_arc;
+      p.likelihood += std::log(std::max(m.other_likelihood, 1e-300));
+    }
+    const double k = double(p.px.size());
+    p.arc /= k;
+    p.likelihood = std::exp(p.likelihood / k);  // geometric mean (two views: sqrt of the product)
+    const Triangulated t = triangulate(cams, pix);
+    if (!t.ok) continue;
+    p.p_W = t.p_W;
+    if (partners[i].size() >= 2) {
+      std::vector<Eigen::Vector2d> ideal{pts[r].ideal[i]}, tangent{Eigen::Vector2d::Zero()};
+      for (const auto& [v, m] : partners[i]) {
+        ideal.push_back(views[v].camera.undistort(m.other_px));
+        tangent.push_back(m.other_tangent);
       }
+      const Eigen::Vector3d X = refine_on_curves(cams, ideal, tangent, t.p_W);
+      if (X.allFinite()) p.p_W = X;
+    }
+    first_arc = std::min(first_arc, p.arc);
+    last_arc = std::max(last_arc, p.arc);
+    found.push_back(std::move(p));
+  }
+  // A point of another view counts as beyond an end of the reference matches only by more than half of that
+  // view's spacing (relative arc length): a point the reference lost is a whole spacing out, while the views'
+  // own end points differ by pixel noise only, and keeping those of them that happen to fall outside
+  // lengthened the curve at both ends (a base ~0.6 px behind the follicle at 0.5 px noise, and a systematic
+  // angle bias). Inside, they would repeat the same stretch with pixel errors shared with the reference
+  // matches (correlated residuals make the fit follow the noise).
+  for (std::size_t u = 1; u < usable.size(); ++u) {
+    const std::size_t v = usable[u];
+    const double beyond_margin = 0.5 / double(pts[v].px.size() - 1);
+    for (const Match& m : match_views(pts[v], pts[r], F[v][r])) {
+      const double arc = 0.5 * (m.own_arc + m.other_arc);
+      if (arc >= first_arc - beyond_margin && arc <= last_arc + beyond_margin) continue;
+      const Triangulated t = triangulate({&views[r].camera, &views[v].camera}, {m.other_px, pts[v].px[m.own]});
+      if (!t.ok) continue;
+      found.push_back({arc, t.p_W, {{r, m.other_px}, {v, pts[v].px[m.own]}},
+                       std::sqrt(pts[v].likelihood[m.own] * m.other_likelihood)});
     }
   }
   std::stable_sort(found.begin(), found.end(), [](const Point3& x, const Point3& y) { return x.arc < y.arc; });
   if (found.size() < std::size_t(o.min_points)) return f;
-  const std::array<const Camera*, 2> cams{&top_cam, &front_cam};
-  const std::array<const ViewPoints*, 2> views{&a, &b};
   // Fit, then drop the triangulated points whose pixels lie farther than max(outlier_px, 3 median) from the
   // fitted curve projected into their views, and fit again. (A wild point paired with its epipolar partner
   // reprojects exactly; only its distance to the curve the other points define shows it.)
@@ -263,23 +345,23 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const TrackFrame* top, 
   std::optional<FittedCurve> curve;
   std::size_t used = 0;
   for (int pass = 0; pass < 2; ++pass) {
-    std::vector<Eigen::Vector3d> pts;
+    std::vector<Eigen::Vector3d> points;
     std::vector<double> weights;
     for (std::size_t i = 0; i < found.size(); ++i)
       if (use[i]) {
-        pts.push_back(found[i].p_W);
+        points.push_back(found[i].p_W);
         weights.push_back(found[i].likelihood);
       }
-    used = pts.size();
+    used = points.size();
     if (used < std::size_t(o.min_points)) return f;
-    curve = fit_curve(pts, weights, std::min(o.fit_segments, int(used) - 4), o.nodes);
+    curve = fit_curve(points, weights, std::min(o.fit_segments, int(used) - 4), o.nodes);
     if (!curve) return f;
     if (pass == 1) break;
-    std::array<std::vector<Eigen::Vector2d>, 2> curve_px;
-    for (std::size_t v = 0; v < 2; ++v) curve_px[v] = project_curve(curve->dense, *cams[v]);
-    std::vector<double> err(found.size());
+    std::vector<std::vector<Eigen::Vector2d>> curve_px(n_views);
+    for (std::size_t v : usable) curve_px[v] = project_curve(curve->dense, views[v].camera);
+    std::vector<double> err(found.size(), 0.0);
     for (std::size_t i = 0; i < found.size(); ++i)
-      err[i] = std::max(distance_to_curve(curve_px[0], found[i].px[0]), distance_to_curve(curve_px[1], found[i].px[1]));
+      for (const auto& [v, px] : found[i].px) err[i] = std::max(err[i], distance_to_curve(curve_px[v], px));
     const double gate = std::max(o.outlier_px, 3.0 * median_of(err));
     bool dropped = false;
     for (std::size_t i = 0; i < found.size(); ++i)
@@ -292,40 +374,41 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const TrackFrame* top, 
   f.points_used = used;
   // The reprojection error: each tracked point's distance to the final curve projected into its view.
   std::vector<double> all;
-  std::array<double, 2> base_gap{0.0, 0.0};
-  f.point_reprojection_px.resize(2);
+  std::vector<double> base_gap(n_views, 0.0);
+  f.point_reprojection_px.resize(n_views);
   double sum_like = 0.0;
   std::size_t n_like = 0;
-  for (std::size_t v = 0; v < 2; ++v) {
-    const std::vector<Eigen::Vector2d> curve_px = project_curve(curve->dense, *cams[v]);
-    const TrackFrame& track = v == 0 ? *top : *front;
-    f.point_reprojection_px[v].assign(track.points_px.size(), nan_v);
-    for (std::size_t k = 0; k < views[v]->px.size(); ++k) {
-      const double d = distance_to_curve(curve_px, views[v]->px[k]);
-      f.point_reprojection_px[v][views[v]->index[k]] = d;
+  for (std::size_t v = 0; v < n_views; ++v) {
+    if (!tracks[v]) continue;
+    const ViewPoints& view = pts[v];
+    const std::vector<Eigen::Vector2d> curve_px = project_curve(curve->dense, views[v].camera);
+    f.point_reprojection_px[v].assign(tracks[v]->points_px.size(), nan_v);
+    for (std::size_t k = 0; k < view.px.size(); ++k) {
+      const double d = distance_to_curve(curve_px, view.px[k]);
+      f.point_reprojection_px[v][view.index[k]] = d;
       all.push_back(d);
-      sum_like += views[v]->likelihood[k];
+      sum_like += view.likelihood[k];
       ++n_like;
     }
-    // A view's tracked base (point 0) beyond the start of the curve: its partner in the other view was lost
+    // A view's tracked base (point 0) beyond the start of the curve: its partner in the other views was lost
     // farther out than the end extension reaches, and the curve would start a tracked spacing out.
-    if (!views[v]->index.empty() && views[v]->index.front() == 0) base_gap[v] = distance_to_curve(curve_px, views[v]->px.front());
+    if (!view.index.empty() && view.index.front() == 0) base_gap[v] = distance_to_curve(curve_px, view.px.front());
     // The base (point 0, when this view tracked it) is where the curve starts, not merely a point near it:
     // its distance to the projected start of the curve. Along their length two views' curves can always be
-    // matched by epipolar lines, so a calibration error shows only where they end: the two views' base points
-    // do not lie on each other's epipolar lines and the curve, which reaches the farther of them, overshoots
-    // the other view's base. (The tip is left out: trackers often end the two views' tracks at different
-    // points of the whisker.)
-    if (!views[v]->index.empty() && views[v]->index.front() == 0) {
-      const double d = (curve_px.front() - views[v]->px.front()).norm();
+    // matched by epipolar lines, so with two views a calibration error shows only where they end: the base
+    // points do not lie on each other's epipolar lines and the curve, which reaches the farther of them,
+    // overshoots the other view's base. (The tip is left out: trackers often end the views' tracks at
+    // different points of the whisker.) A third view sees such errors along the whole curve.
+    if (!view.index.empty() && view.index.front() == 0) {
+      const double d = (curve_px.front() - view.px.front()).norm();
       f.point_reprojection_px[v][0] = d;
-      all[all.size() - views[v]->px.size()] = d;  // point 0's entry of this view
+      all[all.size() - view.px.size()] = d;  // point 0's entry of this view
     }
   }
   const double gate = std::max(o.outlier_px, 3.0 * median_of(all));
   double sum2 = 0.0;
   std::size_t n_in = 0;
-  for (std::size_t v = 0; v < 2; ++v) {
+  for (std::size_t v = 0; v < n_views; ++v) {
     double view_sum2 = 0.0;
     std::size_t view_n = 0;
     for (double d : f.point_reprojection_px[v]) {
@@ -342,7 +425,7 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const TrackFrame* top, 
   }
   f.reprojection_px = n_in ? std::sqrt(sum2 / double(n_in)) : nan_v;
   f.likelihood = n_like ? sum_like / double(n_like) : nan_v;
-  if (std::max(base_gap[0], base_gap[1]) > gate) {
+  if (*std::max_element(base_gap.begin(), base_gap.end()) > gate) {
     f.status = FrameStatus::base_not_reached;
     return f;
   }
@@ -374,7 +457,7 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const TrackFrame* top, 
 void clear_values(ReconstructedFrame& f) {
   const FrameStatus status = f.status;
   const double rep = f.reprojection_px, like = f.likelihood;
-  const std::size_t used = f.points_used, outliers = f.outliers;
+  const std::size_t used = f.points_used, outliers = f.outliers, views_used = f.views_used;
   const std::int64_t frame = f.frame;
   std::vector<double> view_rep = std::move(f.view_reprojection_px);
   std::vector<std::vector<double>> point_rep = std::move(f.point_reprojection_px);
@@ -387,6 +470,7 @@ void clear_values(ReconstructedFrame& f) {
   f.reprojection_px = rep;
   f.likelihood = like;
   f.points_used = used;
+  f.views_used = views_used;
 }
 
 /// Symmetric epipolar distance [ideal px] of the base points (point 0 of both tracks) of one frame, NaN if
@@ -420,70 +504,211 @@ std::string fixed(double v, int digits = 1) {
   return buf;
 }
 
-/// Inconsistent inputs (ReconstructOptions: max_unpaired, max_epipolar_px, min_yield), each with its likely cause.
-void check_inputs(Reconstruction& rec, const Tracks2D& top, const Camera& top_cam, const Tracks2D& front,
-                  const Camera& front_cam, const ReconstructOptions& o) {
-  std::int64_t top_lo = 0, top_hi = -1, front_lo = 0, front_hi = -1;
-  std::size_t n_top = 0, n_front = 0;
-  for (const auto& f : top.frames) {
-    top_lo = n_top ? std::min(top_lo, f.frame) : f.frame;
-    top_hi = n_top++ ? std::max(top_hi, f.frame) : f.frame;
+/// The trackers' pixel noise [px], from the tracks alone (no calibration): the median over every view and
+/// frame of the third differences of consecutive tracked points across the local chord, scaled to a standard
+/// deviation (a third difference of independent noise of deviation sigma per coordinate has deviation
+/// sqrt(20) sigma; the median of its absolute value is 0.6745 of that). A smooth whisker sampled at a few dozen
+/// points has third differences far below a pixel. NaN without four consecutive points.
+double track_noise_px(const std::vector<View>& views, double min_likelihood) {
+  std::vector<double> d;
+  for (const auto& v : views)
+    for (const auto& f : v.tracks.frames)
+      for (std::size_t k = 0; k + 3 < f.points_px.size(); ++k) {
+        bool ok = true;
+        for (std::size_t j = k; j < k + 4; ++j) ok = ok && f.likelihood[j] >= min_likelihood && f.points_px[j].allFinite();
+        if (!ok) continue;
+        const Eigen::Vector2d chord = f.points_px[k + 3] - f.points_px[k];
+        if (!(chord.norm() > 0.0)) continue;
+        const Eigen::Vector2d third = f.points_px[k + 3] - 3.0 * f.points_px[k + 2] + 3.0 * f.points_px[k + 1] - f.points_px[k];
+        d.push_back(std::abs(third.x() * chord.y() - third.y() * chord.x()) / chord.norm());
+      }
+  return d.empty() ? nan_v : median_of(d) / (0.6745 * std::sqrt(20.0));
+}
+
+/// Inconsistent inputs (ReconstructOptions: max_unpaired, max_epipolar_px, min_yield), each with its likely cause
+/// and naming the view. `views` hold the tracks with their frame offsets applied.
+void check_inputs(Reconstruction& rec, const std::vector<View>& views, const std::vector<std::int64_t>& offsets,
+                  const ReconstructOptions& o) {
+  const std::size_t n_views = views.size();
+  struct Range {
+    std::int64_t lo = 0, hi = -1;
+    std::size_t n = 0;
+  };
+  std::vector<Range> range(n_views);
+  for (std::size_t v = 0; v < n_views; ++v)
+    for (const auto& f : views[v].tracks.frames) {
+      range[v].lo = range[v].n ? std::min(range[v].lo, f.frame) : f.frame;
+      range[v].hi = range[v].n ? std::max(range[v].hi, f.frame) : f.frame;
+      ++range[v].n;
+    }
+  for (const auto& f : rec.frames) {
+    std::size_t seen = 0;
+    for (const auto& v : views) seen += v.tracks.find(f.frame) != nullptr;
+    rec.frames_in_both += seen >= 2;
   }
-  for (const auto& f : front.frames) {
-    front_lo = n_front ? std::min(front_lo, f.frame) : f.frame;
-    front_hi = n_front++ ? std::max(front_hi, f.frame) : f.frame;
-  }
-  for (const auto& f : top.frames) rec.frames_in_both += front.find(f.frame) != nullptr;
-  // With an explicit offset the views' ranges differ by design: only gaps inside their overlap count.
-  std::size_t considered = rec.frames.size();
-  if (o.front_frame_offset != 0) {
-    const std::int64_t lo = std::max(top_lo, front_lo), hi = std::min(top_hi, front_hi);
-    considered = std::size_t(std::count_if(rec.frames.begin(), rec.frames.end(),
-                                           [&](const ReconstructedFrame& f) { return f.frame >= lo && f.frame <= hi; }));
-  }
-  rec.base_epipolar_px = median_base_epipolar(top, top_cam, front, front_cam, o.min_likelihood);
-  rec.swapped_epipolar_px = median_base_epipolar(front, top_cam, top, front_cam, o.min_likelihood);
-  const std::size_t all = considered;
-  const std::size_t unpaired = all - std::min(all, rec.frames_in_both);
-  // Views whose frame ranges differ (one file starts or ends later) are out of step, however few the frames:
-  // a frame or two lost at either end is tolerated.
-  const std::int64_t range_gap = std::abs(top_lo - front_lo) + std::abs(top_hi - front_hi);
-  const bool ranges_differ = n_top > 0 && n_front > 0 && o.front_frame_offset == 0 && o.max_unpaired < 1.0 &&
-                             double(range_gap) > std::max(2.0, 0.01 * double(rec.frames.size()));
-  if (all > 0 && ((unpaired > 2 && double(unpaired) > o.max_unpaired * double(all)) || ranges_differ)) {
+  // Out of step: each view against the first (the reference), over the frames either of the two tracks.
+  const std::string& ref = rec.view_names[0];
+  for (std::size_t v = 1; v < n_views; ++v) {
+    const std::string& name = rec.view_names[v];
+    const bool shifted = offsets[v] != offsets[0];
+    // With an explicit offset the views' ranges differ by design: only gaps inside their overlap count.
+    const std::int64_t lo = std::max(range[0].lo, range[v].lo), hi = std::min(range[0].hi, range[v].hi);
+    std::size_t all = 0, unpaired = 0;
+    for (const auto& f : rec.frames) {
+      const bool a = views[0].tracks.find(f.frame) != nullptr, b = views[v].tracks.find(f.frame) != nullptr;
+      if (!(a || b) || (shifted && (f.frame < lo || f.frame > hi))) continue;
+      ++all;
+      unpaired += a != b;
+    }
+    // Views whose frame ranges differ (one file starts or ends later) are out of step, however few the frames:
+    // a frame or two lost at either end is tolerated.
+    const std::int64_t range_gap = std::abs(range[0].lo - range[v].lo) + std::abs(range[0].hi - range[v].hi);
+    const bool ranges_differ = range[0].n > 0 && range[v].n > 0 && !shifted && o.max_unpaired < 1.0 &&
+                               double(range_gap) > std::max(2.0, 0.01 * double(all));
+    if (all == 0 || !((unpaired > 2 && double(unpaired) > o.max_unpaired * double(all)) || ranges_differ)) continue;
+    auto describe = [&](std::size_t w) {
+      return rec.view_names[w] + ": frames " + std::to_string(range[w].lo) + " to " + std::to_string(range[w].hi) +
+             ", " + std::to_string(range[w].n) + " frames";
+    };
     std::string msg = std::to_string(unpaired) + " of " + std::to_string(all) +
-                      " frames are tracked in one view only (top: frames " + std::to_string(top_lo) + " to " +
-                      std::to_string(top_hi) + ", " + std::to_string(n_top) + " frames; front: frames " +
-                      std::to_string(front_lo) + " to " + std::to_string(front_hi) + ", " + std::to_string(n_front) +
-                      " frames)";
-    if (ranges_differ)
-      msg += ": the views are out of step or from different videos? If the front video starts later, give the "
-             "offset (--front-frame-offset N: front frame f is top frame f + N); --max-unpaired 1 accepts it";
-    else
+                      " frames are tracked in one view only (" + describe(0) + "; " + describe(v) + ")";
+    if (ranges_differ) {
+      const std::string flag = name == "front" ? "--front-frame-offset N" : "--frame-offset " + name + "=N";
+      msg += ": the views are out of step or from different videos? If the " + name + " video starts later, give the "
+             "offset (" + flag + ": " + name + " frame f is " + ref + " frame f + N); --max-unpaired 1 accepts it";
+    } else {
       msg += "; --max-unpaired " + fixed(double(unpaired) / double(all), 2) + " accepts it";
+    }
     rec.problems.push_back(msg);
   }
-  // "Far above the noise": the limit is max_epipolar_px or 4x the median reprojection error (about the noise).
+  // Agreement with the calibration, per pair of views. "Far above the noise": the limit is max_epipolar_px or
+  // 4x the median reprojection error (about the noise).
+  auto pair_median = [&](std::size_t a, std::size_t b, std::size_t tracks_a, std::size_t tracks_b) {
+    return median_base_epipolar(views[tracks_a].tracks, views[a].camera, views[tracks_b].tracks, views[b].camera,
+                                o.min_likelihood);
+  };
   std::vector<double> reprojection;
   for (const auto& f : rec.frames)
     if (std::isfinite(f.reprojection_px)) reprojection.push_back(f.reprojection_px);
-  const double limit = std::max(o.max_epipolar_px, reprojection.empty() ? 0.0 : 4.0 * median_of(reprojection));
-  const bool disagree = std::isfinite(rec.base_epipolar_px) && rec.base_epipolar_px > limit;
-  if (disagree) {
-    std::string msg = "the views do not agree with the calibration: the base points lie a median " +
-                      fixed(rec.base_epipolar_px) + " px from each other's epipolar lines (about the pixel noise " +
-                      "when they agree; limit " + fixed(limit) + " px: --max-epipolar-px or 4x the median " +
-                      "reprojection error)";
-    if (std::isfinite(rec.swapped_epipolar_px) && rec.swapped_epipolar_px <= limit)
-      msg += ": the views are swapped (with --top and --front exchanged, " + fixed(rec.swapped_epipolar_px) + " px)";
-    else
-      msg += ": views swapped or given the wrong camera names, a wrong calibration, or views out of step";
-    rec.problems.push_back(msg);
+  // With three or more views the reprojection error itself rises with a wrong calibration (the views' rays no
+  // longer meet), so the noise is taken from the tracks' smoothness instead.
+  rec.track_noise_px = track_noise_px(views, o.min_likelihood);
+  const double median_reprojection = reprojection.empty() ? nan_v : median_of(reprojection);
+  const double noise = n_views == 2 ? median_reprojection : rec.track_noise_px;
+  const double limit = std::max(o.max_epipolar_px, std::isfinite(noise) ? 4.0 * noise : 0.0);
+  const ViewPairCheck* worst = nullptr;
+  std::vector<const ViewPairCheck*> failing;
+  for (std::size_t a = 0; a < n_views; ++a)
+    for (std::size_t b = a + 1; b < n_views; ++b) {
+      ViewPairCheck c;
+      c.a = a;
+      c.b = b;
+      c.base_epipolar_px = pair_median(a, b, a, b);
+      c.swapped_epipolar_px = pair_median(a, b, b, a);
+      rec.view_pairs.push_back(c);
+    }
+  for (const auto& c : rec.view_pairs) {
+    if (std::isfinite(c.base_epipolar_px) && (!worst || c.base_epipolar_px > worst->base_epipolar_px)) worst = &c;
+    if (std::isfinite(c.base_epipolar_px) && c.base_epipolar_px > limit) failing.push_back(&c);
+  }
+  if (worst) {
+    rec.base_epipolar_px = worst->base_epipolar_px;
+    rec.swapped_epipolar_px = worst->swapped_epipolar_px;
+  }
+  if (!failing.empty()) {
+    const std::string limit_text = " (about the pixel noise when they agree; limit " + fixed(limit) +
+                                   " px: --max-epipolar-px or 4x " +
+                                   (n_views == 2 ? "the median reprojection error)" : "the tracks' pixel noise)");
+    if (n_views == 2) {
+      const ViewPairCheck& c = *failing.front();
+      std::string msg = "the views do not agree with the calibration: the base points lie a median " +
+                        fixed(c.base_epipolar_px) + " px from each other's epipolar lines" + limit_text;
+      if (std::isfinite(c.swapped_epipolar_px) && c.swapped_epipolar_px <= limit)
+        msg += ": the views are swapped (with the " + rec.view_names[0] + " and " + rec.view_names[1] +
+               " tracks exchanged, " + fixed(c.swapped_epipolar_px) + " px)";
+      else
+        msg += ": views swapped or given the wrong camera names, a wrong calibration, or views out of step";
+      rec.problems.push_back(msg);
+    } else {
+      // Which view: one whose every pair fails while some other pair agrees. Else an exchange of two views'
+      // tracks after which every pair agrees. Else the failing pairs.
+      std::string pairs_text;
+      for (const ViewPairCheck* c : failing)
+        pairs_text += std::string(pairs_text.empty() ? "" : ", ") + rec.view_names[c->a] + "-" + rec.view_names[c->b] +
+                      " " + fixed(c->base_epipolar_px) + " px";
+      std::optional<std::size_t> culprit;
+      for (std::size_t v = 0; v < n_views && !culprit; ++v) {
+        bool all_fail = true, other_agrees = false;
+        for (const auto& c : rec.view_pairs) {
+          const bool fails = std::find(failing.begin(), failing.end(), &c) != failing.end();
+          if (c.a == v || c.b == v)
+            all_fail = all_fail && fails;
+          else
+            other_agrees = other_agrees || (std::isfinite(c.base_epipolar_px) && !fails);
+        }
+        if (all_fail && other_agrees) culprit = v;
+      }
+      std::optional<std::pair<std::size_t, std::size_t>> swap;
+      double swapped_worst = 0.0;
+      for (std::size_t a = 0; a < n_views && !swap; ++a)
+        for (std::size_t b = a + 1; b < n_views && !swap; ++b) {
+          std::vector<std::size_t> t(n_views);
+          for (std::size_t k = 0; k < n_views; ++k) t[k] = k;
+          std::swap(t[a], t[b]);
+          double w = 0.0;
+          bool ok = true;
+          for (std::size_t x = 0; x < n_views && ok; ++x)
+            for (std::size_t y = x + 1; y < n_views && ok; ++y) {
+              const double d = pair_median(x, y, t[x], t[y]);
+              ok = std::isfinite(d) && d <= limit;
+              w = std::max(w, d);
+            }
+          if (ok) {
+            swap = std::make_pair(a, b);
+            swapped_worst = w;
+          }
+        }
+      std::string msg = "the views do not agree with the calibration: base points a median of " + pairs_text +
+                        " from each other's epipolar lines" + limit_text;
+      if (swap)
+        msg += ": the views '" + rec.view_names[swap->first] + "' and '" + rec.view_names[swap->second] +
+               "' are swapped (with their tracks exchanged every pair of views agrees, at most " +
+               fixed(swapped_worst) + " px)";
+      else if (culprit)
+        msg += ": view '" + rec.view_names[*culprit] + "' disagrees with every other view while they agree with "
+               "each other: its tracks are of another camera, its calibration is wrong, or its video is out of step";
+      else
+        msg += ": views swapped or given the wrong camera names, a wrong calibration, or views out of step";
+      rec.problems.push_back(msg);
+    }
+  }
+  // Per view, the median reprojection error over the frames with a curve. With three or more views it is about
+  // the pixel noise when the calibration is right, and rises along the whole whisker when it is not.
+  rec.view_reprojection_px_median.assign(n_views, nan_v);
+  for (std::size_t v = 0; v < n_views; ++v) {
+    std::vector<double> d;
+    for (const auto& f : rec.frames)
+      if (v < f.view_reprojection_px.size() && std::isfinite(f.view_reprojection_px[v])) d.push_back(f.view_reprojection_px[v]);
+    if (!d.empty()) rec.view_reprojection_px_median[v] = median_of(d);
+  }
+  const double reprojection_limit = std::max(0.5 * o.max_epipolar_px, 2.0 * rec.track_noise_px);
+  if (n_views >= 3 && std::isfinite(median_reprojection) && std::isfinite(rec.track_noise_px) &&
+      median_reprojection > reprojection_limit) {
+    std::string per_view;
+    for (std::size_t v = 0; v < n_views; ++v)
+      per_view += std::string(v ? ", " : "") + rec.view_names[v] + " " + fixed(rec.view_reprojection_px_median[v], 2);
+    rec.problems.push_back("the views do not agree with the calibration: the median reprojection error, " +
+                           fixed(median_reprojection, 2) + " px (per view: " + per_view + " px), is far above the " +
+                           "tracks' pixel noise, " + fixed(rec.track_noise_px, 2) + " px (limit " +
+                           fixed(reprojection_limit, 2) + " px: 2x the noise or half --max-epipolar-px): with three or "
+                           "more views the rays of a wrong calibration do not meet; a camera moved or turned after "
+                           "calibrating, a wrong focal length or distortion, or views out of step");
   }
   const std::size_t ok = rec.count(FrameStatus::ok);
+  const std::string both = n_views == 2 ? "both views" : "at least two views";
   if (rec.frames_in_both > 0 && double(ok) < o.min_yield * double(rec.frames_in_both)) {
     std::string msg = "only " + std::to_string(ok) + " of the " + std::to_string(rec.frames_in_both) +
-                      " frames tracked in both views were reconstructed (--min-yield " + fixed(o.min_yield, 2) + ")";
+                      " frames tracked in " + both + " were reconstructed (--min-yield " + fixed(o.min_yield, 2) + ")";
     const std::size_t few = rec.count(FrameStatus::too_few_points), rep = rec.count(FrameStatus::reprojection);
     if (rep >= few && rep > 0)
       msg += "; most failed on the reprojection error (> --max-reprojection-px " + fixed(o.max_reprojection_px) +
@@ -513,7 +738,15 @@ const char* frame_status_name(FrameStatus s) {
   return "unknown";
 }
 
-Reconstruction::Reconstruction() : base_epipolar_px(nan_v), swapped_epipolar_px(nan_v) {}
+Reconstruction::Reconstruction() : base_epipolar_px(nan_v), swapped_epipolar_px(nan_v), track_noise_px(nan_v) {}
+
+ViewPairCheck::ViewPairCheck() : base_epipolar_px(nan_v), swapped_epipolar_px(nan_v) {}
+
+std::int64_t ReconstructOptions::frame_offset(const std::string& view) const {
+  const auto it = frame_offsets.find(view);
+  if (it != frame_offsets.end()) return it->second;
+  return view == "front" ? front_frame_offset : 0;
+}
 
 std::size_t Reconstruction::count(FrameStatus s) const {
   return std::size_t(std::count_if(frames.begin(), frames.end(), [&](const auto& f) { return f.status == s; }));
@@ -538,33 +771,60 @@ void ReconstructOptions::validate() const {
   require(min_yield >= 0.0 && min_yield <= 1.0, "min_yield", min_yield, "in [0, 1]");
   require(max_unpaired >= 0.0 && max_unpaired <= 1.0, "max_unpaired", max_unpaired, "in [0, 1]");
   require(max_epipolar_px > 0.0, "max_epipolar_px", max_epipolar_px, "> 0");
+  if (front_frame_offset != 0 && frame_offsets.count("front"))
+    throw std::invalid_argument("front_frame_offset (" + std::to_string(front_frame_offset) +
+                                ") and frame_offsets['front'] are both given: give one");
   for (std::size_t k = 0; k < edges.size(); ++k)
     if (!edges[k].point.allFinite() || !edges[k].direction.allFinite() || edges[k].direction.norm() == 0.0)
       throw std::invalid_argument("edges[" + std::to_string(k) + "] needs a finite point and non-zero direction");
 }
 
-Reconstruction reconstruct(const Tracks2D& top, const Camera& top_camera, const Tracks2D& front_tracks,
+Reconstruction reconstruct(const Tracks2D& top, const Camera& top_camera, const Tracks2D& front,
                            const Camera& front_camera, const ReconstructOptions& o, const RunControl& control) {
+  return reconstruct(std::vector<View>{{"top", top, top_camera}, {"front", front, front_camera}}, o, control);
+}
+
+Reconstruction reconstruct(const std::vector<View>& input, const ReconstructOptions& o, const RunControl& control) {
   o.validate();
-  Tracks2D shifted;
-  if (o.front_frame_offset != 0) {
-    shifted = front_tracks;
-    for (auto& f : shifted.frames) f.frame += o.front_frame_offset;
+  if (input.size() < 2)
+    throw std::invalid_argument("reconstruct: views: at least two camera views are needed, got " +
+                                std::to_string(input.size()));
+  for (std::size_t v = 0; v < input.size(); ++v) {
+    if (input[v].name.empty()) throw std::invalid_argument("reconstruct: views[" + std::to_string(v) + "]: empty name");
+    for (std::size_t w = 0; w < v; ++w)
+      if (input[w].name == input[v].name)
+        throw std::invalid_argument("reconstruct: views: the name '" + input[v].name + "' is given twice");
   }
-  const Tracks2D& front = o.front_frame_offset != 0 ? shifted : front_tracks;
+  for (const auto& entry : o.frame_offsets)
+    if (std::none_of(input.begin(), input.end(), [&](const View& v) { return v.name == entry.first; }))
+      throw std::invalid_argument("frame_offsets: no view named '" + entry.first + "' (offset " +
+                                  std::to_string(entry.second) + ")");
+  // Frame offsets applied: every view's frame f is the common frame f + offset.
+  std::vector<View> views = input;
+  std::vector<std::int64_t> offsets;
+  for (auto& v : views) {
+    offsets.push_back(o.frame_offset(v.name));
+    if (offsets.back() != 0)
+      for (auto& f : v.tracks.frames) f.frame += offsets.back();
+  }
+  const std::size_t n_views = views.size();
   std::vector<std::int64_t> frames;
-  for (const auto* t : {&top, &front})
-    for (const auto& f : t->frames) frames.push_back(f.frame);
+  for (const auto& v : views)
+    for (const auto& f : v.tracks.frames) frames.push_back(f.frame);
   std::sort(frames.begin(), frames.end());
   frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
-  const Eigen::Matrix3d F = fundamental_matrix(top_camera, front_camera);
+  PairMatrices F(n_views, std::vector<Eigen::Matrix3d>(n_views, Eigen::Matrix3d::Zero()));
+  for (std::size_t a = 0; a < n_views; ++a)
+    for (std::size_t b = 0; b < n_views; ++b)
+      if (a != b) F[a][b] = fundamental_matrix(views[a].camera, views[b].camera);
   Reconstruction rec;
-  rec.view_names = {"top", "front"};
+  for (const auto& v : views) rec.view_names.push_back(v.name);
   rec.frames.resize(frames.size());
   ProgressCounter progress(control, frames.size());
+  std::vector<const TrackFrame*> tracks(n_views);
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    rec.frames[i] = reconstruct_frame(frames[i], top.find(frames[i]), top_camera, front.find(frames[i]), front_camera,
-                                      F, o);
+    for (std::size_t v = 0; v < n_views; ++v) tracks[v] = views[v].tracks.find(frames[i]);
+    rec.frames[i] = reconstruct_frame(frames[i], tracks, views, F, o);
     progress.advance();
   }
   // Identity check: a base far from the median base of the neighbouring good frames is another whisker.
@@ -622,7 +882,7 @@ Reconstruction reconstruct(const Tracks2D& top, const Camera& top_camera, const 
     }
     rec.undeflected.push_back(std::move(u));
   }
-  check_inputs(rec, top, top_camera, front, front_camera, o);
+  check_inputs(rec, views, offsets, o);
   return rec;
 }
 

@@ -32,6 +32,10 @@ bool is_tip(const Whisker& w, double s) { return s >= w.length() * (1.0 - 1e-12)
 
 /// Newton steps a warm attempt on an object with creases takes before the sliding attempt takes over.
 constexpr int warm_creased_iterations = 12;
+/// Features of a creased shape attempt_on_features holds in turn before it gives up.
+constexpr int feature_rounds = 12;
+/// Points between two contacts across a crease at which attempt_by_bracketing looks for the crease.
+constexpr int crease_samples = 16;
 /// Links each side of the contact on which a warm sliding attempt looks for the whisker's nearest point.
 constexpr int sliding_window = 4;
 
@@ -239,6 +243,135 @@ ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const Objec
   return a;
 }
 
+ObjectAttempt attempt_by_bracketing(const Whisker& w, const Scales& sc, const ObjectGeometryB& g,
+                                   const FrictionLaw& law, double& sigma, const ObjectAttempt& from,
+                                   const SolveOptions& options) {
+  ObjectAttempt failed = from;
+  failed.status = Status::not_converged;
+  failed.lm.iterations = 0;
+  if (from.tip || g.core_B) return failed;
+  int iterations = 0;
+  // The held solve at s (gap and force direction), from u; its tangency g'(s) = n . t - r'.
+  struct Held {
+    bool ok = false;
+    double tangency = 0.0;
+    Eigen::Vector3d u;
+    ObjectAttempt attempt;
+    Eigen::Vector3d c_B;
+  };
+  auto held_at = [&](double s, Eigen::Vector3d u) {
+    u[2] = s / sc.length;
+    const ObjectAttempt h = attempt_side(w, sc, g, law, sigma, u, options, ClearancePiece::centre, s);
+    iterations += h.lm.iterations;
+    Held out;
+    out.ok = h.status == Status::converged;
+    if (!out.ok) return out;
+    const ObjectContactPoint p = contact_point_at(w, g, h.state, false, sigma);
+    out.tangency = p.normal_B.dot(p.t_B) - p.slope;
+    out.u = h.lm.u;
+    out.attempt = h;
+    out.c_B = p.c_B;
+    return out;
+  };
+  const double L = w.length(), link = L / w.links();
+  double s0 = std::clamp(from.state.arc_length, link, L - link);
+  Held h0 = held_at(s0, from.lm.u);
+  if (!h0.ok) {
+    failed.lm.iterations = iterations;
+    return failed;
+  }
+  // The gap's minimum: the tangency rises through zero from below (lo) to above (hi) as s grows.
+  const double direction = h0.tangency > 0.0 ? -1.0 : 1.0;
+  double step = link, s1 = s0;
+  Held h1;
+  for (int i = 0; i < 12; ++i) {
+    s1 = std::clamp(s0 + direction * step, 1e-3 * L, L * (1.0 - 1e-9));
+    h1 = held_at(s1, h0.u);
+    if (!h1.ok) break;
+    if ((h1.tangency > 0.0) != (h0.tangency > 0.0)) break;
+    s0 = s1;
+    h0 = h1;
+    step *= 2.0;
+    if (s1 <= 1e-3 * L || s1 >= L * (1.0 - 1e-9)) {
+      h1.ok = false;
+      break;
+    }
+  }
+  if (!h1.ok || (h1.tangency > 0.0) == (h0.tangency > 0.0)) {
+    failed.lm.iterations = iterations;
+    return failed;
+  }
+  double lo = s0, hi = s1;
+  Held at_lo = h0, at_hi = h1;
+  if (lo > hi) {
+    std::swap(lo, hi);
+    std::swap(at_lo, at_hi);
+  }
+  while (hi - lo > 1e-9 * L) {
+    const double mid = 0.5 * (lo + hi);
+    const Held m = held_at(mid, at_lo.u);
+    if (!m.ok) break;
+    if (m.tangency > 0.0) {
+      hi = mid;
+      at_hi = m;
+    } else {
+      lo = mid;
+      at_lo = m;
+    }
+  }
+  // The crease between: the feature nearest to the segment between the two contact points (its middle, else
+  // the first edge or vertex along it).
+  SurfacePoint crease = g.query(0.5 * (at_lo.c_B + at_hi.c_B));
+  for (int k = 1; k < crease_samples && crease.feature == SurfaceFeature::face; ++k) {
+    const SurfacePoint q = g.query(at_lo.c_B + (k / double(crease_samples)) * (at_hi.c_B - at_lo.c_B));
+    if (q.feature != SurfaceFeature::face) crease = q;
+  }
+  ObjectAttempt a = attempt_on_features(w, sc, g, law, sigma, at_lo.attempt, options, crease);
+  iterations += a.lm.iterations;
+  a.lm.iterations = iterations;
+  return a;
+}
+
+ObjectAttempt attempt_on_features(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                                  double& sigma, const ObjectAttempt& from, const SolveOptions& options,
+                                  const std::optional<SurfacePoint>& feature) {
+  ObjectAttempt failed = from;
+  failed.status = Status::not_converged;
+  failed.lm.iterations = 0;
+  if (g.core_B || from.tip) return failed;
+  ObjectContactPoint at = contact_point_at(w, g, from.state, false, sigma);
+  if (feature) at.surface = *feature;
+  Eigen::Vector3d u = from.lm.u;
+  int iterations = 0;
+  for (int round = 0; round < feature_rounds; ++round) {
+    const SurfacePoint& q = at.surface;
+    if (q.feature_id < 0 || q.feature == SurfaceFeature::vertex) break;
+    ObjectGeometryB held = g;
+    held.held_feature = q.feature_id;
+    double held_sigma = sigma;
+    if (q.feature == SurfaceFeature::edge) {  // an edge: a peg of radius 0 along its line (the line core's terms)
+      held.core_B = LineCore{q.closest - g.offset_B, q.edge_direction, 0.0};
+      held_sigma = core_side(held, at.c_B, at.t_B);
+    }
+    const ObjectAttempt a = attempt_object(w, sc, held, law, held_sigma, false, u, options);
+    iterations += a.lm.iterations;
+    if (a.status != Status::converged || a.tip) break;
+    // The feature nearest to the contact: where it is the held one (or the same edge seen from the other
+    // triangle: the same distance and normal), the solution is the object's; polished with the plain queries.
+    const ObjectContactPoint on = contact_point_at(w, held, a.state, false, held_sigma);
+    at = contact_point_at(w, g, a.state, false, sigma);
+    if (std::abs(at.surface.signed_distance - on.surface.signed_distance) <= 1e-15 * sc.length &&
+        (at.surface.normal - on.surface.normal).norm() <= 1e-12) {
+      ObjectAttempt b = attempt_object(w, sc, g, law, sigma, false, a.lm.u, options);
+      b.lm.iterations += iterations;
+      return b;
+    }
+    u = a.lm.u;
+  }
+  failed.lm.iterations = iterations;
+  return failed;
+}
+
 ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
                                    std::optional<double> hint, const SolveOptions& options, const LoadState* warm) {
   ObjectOutcome out;
@@ -300,6 +433,10 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
   out.attempt = slide_first ? attempt_by_sliding(w, sc, g, law, sigma, u0, options, first)
                             : attempt_object(w, sc, g, law, sigma, tip, u0, first_options, first);
   int iterations = out.attempt.lm.iterations;
+  if (out.attempt.status == Status::not_converged && g.shape->needs_thickness()) {
+    out.attempt = attempt_by_bracketing(w, sc, g, law, sigma, out.attempt, options);
+    iterations += out.attempt.lm.iterations;
+  }
   if (out.attempt.status == Status::not_converged && !tip) {
     out.attempt = attempt_by_sliding(w, sc, g, law, sigma, u0, options);
     iterations += out.attempt.lm.iterations;

@@ -43,6 +43,23 @@ ObjectAttempt attempt_object(const Whisker& w, const Scales& sc, const ObjectGeo
 ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                                  double& sigma, const Eigen::Vector3d& u0, const SolveOptions& options,
                                  const WarmAttempt& warm = {});
+/// A side contact on a shape with creases (a mesh) solved holding one feature at a time (Shape::nearest_on_feature;
+/// docs/objects.md, "Solver"): an edge as a peg of radius 0 along its line in the line core's terms (regular where
+/// the mesh's own normal turns across the crease's band faster than the force can follow), a face as its plane.
+/// Starts with `feature` (else the feature nearest `from`'s contact) and moves to the feature nearest each
+/// solution until it is the one held; then polished with the plain queries. not_converged at a vertex, at the
+/// tip, or where that does not settle within a few features.
+ObjectAttempt attempt_on_features(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                                  double& sigma, const ObjectAttempt& from, const SolveOptions& options,
+                                  const std::optional<SurfacePoint>& feature = std::nullopt);
+/// A side contact on a shape with creases found along the whisker: the force held at s (gap and force
+/// direction; attempt_side's `pinned`) gives the tangency g'(s) = n . t - r', which rises through zero at the
+/// gap's minimum (on a mesh usually by a jump at a crease). A step of a link from `from`'s s, doubled until g'
+/// changes sign, brackets the minimum; bisection narrows it; then attempt_on_features at the crease found
+/// between the bracket's two contact points.
+ObjectAttempt attempt_by_bracketing(const Whisker& w, const Scales& sc, const ObjectGeometryB& g,
+                                   const FrictionLaw& law, double& sigma, const ObjectAttempt& from,
+                                   const SolveOptions& options);
 /// The solve: start (warm, hint, or the rest whisker's deepest point), attempts, continuation from touch.
 ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
                                    std::optional<double> hint, const SolveOptions& options, const LoadState* warm);

@@ -150,7 +150,7 @@ LMBounds side_bounds() {
 
 SurfacePoint ObjectGeometryB::query(const Eigen::Vector3d& c_B) const {
   const Eigen::Vector3d p_O = R_BO.transpose() * (c_B - offset_B - p_BO);
-  SurfacePoint q = shape->nearest(p_O);
+  SurfacePoint q = held_feature >= 0 ? shape->nearest_on_feature(p_O, held_feature) : shape->nearest(p_O);
   q.closest = R_BO * q.closest + p_BO + offset_B;
   q.normal = R_BO * q.normal;
   q.normal_derivative = R_BO * q.normal_derivative * R_BO.transpose();

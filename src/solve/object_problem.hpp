@@ -25,6 +25,9 @@ struct ObjectGeometryB {
   Eigen::Vector3d offset_B = Eigen::Vector3d::Zero();
   std::optional<LineCore> core_B;  ///< the shape's line core in B
   bool thickness = true;
+  /// A feature of a creased shape the queries hold to (Shape::nearest_on_feature; -1: the nearest feature):
+  /// attempt_on_features.
+  std::int64_t held_feature = -1;
   /// The whisker's kinematics (with the load frame's axes) at the last load contact_point_at or lowest_piece
   /// deflected it with: the same load is asked for several times in a solve (checks, the piece, the outputs).
   /// It depends on the whisker and the load alone; a geometry belongs to one solve (one thread, one whisker).

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "io/guarded_read.hpp"
+#include "vibrissa/objects/mesh.hpp"
 
 namespace vibrissa::io {
 namespace {
@@ -154,6 +155,42 @@ TEST(GuardedRead, AMultithreadedProcessReadsInProcessOnly) {
   other.join();
   EXPECT_EQ(value, 3);
   EXPECT_EQ(log.readers(), 1);
+}
+
+
+// Issue 23: assimp on mutated PLY files aborts (ai_assert), crashes (a face index of -1) or loops (a truncated
+// header). Each is an error naming the field and the file, within the guard's time limit, without the
+// library's own words on stderr.
+TEST(GuardedRead, MalformedMeshFilesAreErrorsNotCrashesOrHangs) {
+  REQUIRE_GUARD();
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("guarded_mesh_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string vertices = "0.01 -0.01 -0.01\n0.03 -0.01 -0.01\n0.01 0.01 -0.01\n0.01 -0.01 0.01\n";
+  const struct {
+    const char* name;
+    std::string text, says;
+  } cases[] = {
+      {"index", header + vertices + "3 0 1 2\n3 0 1 -1\n3 0 2 3\n3 1 2 3\n", "assimp crashed reading this file"},
+      {"count", header + vertices + "3 0 1 2\n-1 0 1 3\n3 0 2 3\n3 1 2 3\n", "assimp crashed reading this file"},
+      {"truncated", "ply\nformat ascii 1.0\nelement ver", "assimp did not finish reading this file within 2 s"},
+  };
+  for (const auto& c : cases) {
+    const std::string path = (dir / (std::string(c.name) + ".ply")).string();
+    std::ofstream(path) << c.text;
+    testing::internal::CaptureStderr();
+    const std::string message = error_of([&] { (void)Mesh::from_file(path, 1.0, ObjectPose{}); });
+    const std::string printed = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(message.rfind("object.file: cannot read mesh: " + path + ": ", 0), 0u) << c.name << ": " << message;
+    EXPECT_NE(message.find(c.says), std::string::npos) << c.name << ": " << message;
+    EXPECT_EQ(printed, "") << c.name;
+  }
+  // A well-formed file is read, through the same guard.
+  const std::string good = (dir / "good.ply").string();
+  std::ofstream(good) << header << vertices << "3 0 1 2\n3 0 1 3\n3 0 2 3\n3 1 2 3\n";
+  EXPECT_EQ(Mesh::from_file(good, 1.0, ObjectPose{})->triangles().size(), 4u);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "io/guarded_read.hpp"
+#include "vibrissa/recon/reconstruct_files.hpp"
 #include "vibrissa/recon/tracks.hpp"
 
 using namespace vibrissa::recon;
@@ -285,4 +286,18 @@ TEST(Janelia, ReadsWhatTheTrackerWroteForASyntheticVideo) {
       EXPECT_GT(inside, 180u);
     }
   }
+}
+
+// --whisker NAME=SPEC (docs/reconstruction.md, "Many whiskers per video"): a number is a Janelia label, else
+// DeepLabCut keypoints base to tip.
+TEST(Whiskers, ParsesLabelsAndKeypointsAndNamesBadArguments) {
+  const WhiskerSelection c2 = parse_whisker("C2=c2_0,c2_1,c2_2");
+  EXPECT_EQ(c2.name, "C2");
+  EXPECT_EQ(c2.bodyparts, (std::vector<std::string>{"c2_0", "c2_1", "c2_2"}));
+  EXPECT_EQ(c2.identity, -1);
+  const WhiskerSelection c1 = parse_whisker("C1=7");
+  EXPECT_EQ(c1.identity, 7);
+  EXPECT_TRUE(c1.bodyparts.empty());
+  EXPECT_NE(error_of([] { parse_whisker("C2"); }).find("--whisker expects NAME="), std::string::npos);
+  EXPECT_NE(error_of([] { parse_whisker("C3=c3_0"); }).find("--whisker C3: 'c3_0' names 1 keypoint"), std::string::npos);
 }

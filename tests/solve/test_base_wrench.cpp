@@ -33,6 +33,9 @@ Whisker real_shaped(Scheme scheme, std::optional<double> base_stiffness = std::n
   return Whisker::from_points(pts, p, pose);
 }
 
+// The round trips put the contact inside a link, not on a node: the forward map has a kink at each node (the
+// loaded joint's weight and, in the paper scheme, the re-mesh change there), where the inverse and central
+// differences are accurate to ~1e-7 relative rather than 1e-9.
 void expect_round_trip(const Whisker& w, double f, double s, double zeta) {
   const Solution fwd = solve_force(w, f, s, zeta);
   const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W);
@@ -48,7 +51,7 @@ void expect_round_trip(const Whisker& w, double f, double s, double zeta) {
 TEST(BaseWrench, RoundTripParabolic) {
   const Whisker w = test::rat_whisker(100, Pose{{0.01, 0.02, -0.01}, 0.3, 0.2, -0.5});
   // Contact anywhere but the distal tenth, forces from 20 uN to 0.2 mN (base moments up to ~0.6 E I_0 / L).
-  for (double frac : {0.04, 0.3, 0.55, 0.72, 0.88})
+  for (double frac : {0.045, 0.305, 0.555, 0.725, 0.875})
     for (double zeta : {0.0, deg(50), deg(-120), deg(180), deg(265)})
       for (double f : {2e-5, 2e-4}) expect_round_trip(w, f, frac * w.length(), zeta);
 }
@@ -56,7 +59,7 @@ TEST(BaseWrench, RoundTripParabolic) {
 TEST(BaseWrench, RoundTripRealShapedBothSchemesAndFollicleSpring) {
   for (Scheme scheme : {Scheme::second_order, Scheme::paper}) {
     const Whisker w = real_shaped(scheme, scheme == Scheme::paper ? std::optional<double>(5e-5) : std::nullopt);
-    for (double frac : {0.15, 0.45, 0.82})
+    for (double frac : {0.156, 0.456, 0.82})
       for (double zeta : {deg(20), deg(-75), deg(140)}) expect_round_trip(w, 1.5e-4, frac * w.length(), zeta);
   }
 }
@@ -90,7 +93,7 @@ Eigen::Matrix<double, 6, 1> signals(const Whisker& w, double s, double f, double
 
 TEST(BaseWrench, CovarianceMatchesFiniteDifferenceJacobian) {
   const Whisker w = test::rat_whisker(100, Pose{{0, 0, 0}, 0.2, 0.1, 0.3});
-  const double s = 0.022, f = 3e-4, zeta = deg(40);
+  const double s = 0.0222, f = 3e-4, zeta = deg(40);  // mid-link (see expect_round_trip)
   BaseWrenchOptions o;
   Eigen::Matrix<double, 6, 1> sd;
   sd << 2e-6, 2e-6, 3e-6, 1e-8, 2e-8, 2e-8;
@@ -170,11 +173,11 @@ TEST(BaseWrench, BendingMomentsAloneAreNeverReportedConverged) {
       EXPECT_EQ(warnings[0].rfind("underdetermined: the signals bending (2 equations)", 0), 0U) << warnings[0];
     }
   // Adding the axial force makes the same contact identifiable: converged, no warning.
-  const Solution fwd = solve_force(w, 1e-4, 0.0216, deg(40));
+  const Solution fwd = solve_force(w, 1e-4, 0.0218, deg(40));
   o.signals = SignalSet::bending_axial();
   const BaseWrenchResult inv = solve_base_wrench(w, fwd.force_W, fwd.moment_W, o);
   EXPECT_EQ(inv.solution.status, Status::converged);
-  EXPECT_NEAR(inv.solution.arc_length, 0.0216, 1e-9);
+  EXPECT_NEAR(inv.solution.arc_length, 0.0218, 1e-9);
   EXPECT_TRUE(base_wrench_warnings(inv).empty());
 }
 
@@ -201,7 +204,7 @@ TEST(BaseWrench, SeriesWarmStartsMatchColdSolves) {
   const Whisker w = test::rat_whisker();
   std::vector<Eigen::Vector3d> F, M;
   for (int k = 0; k < 8; ++k) {
-    const Solution r = solve_force(w, 1e-4 * (1 + k), 0.012 + 0.002 * k, deg(10.0 * k));
+    const Solution r = solve_force(w, 1e-4 * (1 + k), 0.0122 + 0.002 * k, deg(10.0 * k));
     F.push_back(r.force_W);
     M.push_back(r.moment_W);
   }

@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include "vibrissa/core/pose.hpp"
+#include "vibrissa/dynamics/contact.hpp"
 #include "vibrissa/dynamics/modes.hpp"
 
 namespace vibrissa::dynamics {
@@ -31,6 +32,13 @@ BaseTrajectory trajectory_from_placements(std::function<Placement(double)> place
 /// A fixed base at `placement`.
 BaseTrajectory fixed_base(const Placement& placement);
 
+/// Which equations of motion (docs/dynamics.md): `linear` (the linearised chain above, trapezoidal rule mode by
+/// mode); `nonlinear` (the chain's exact kinematics: large rotations of the joints, contact forces through the
+/// deflected shape; the same joint springs, dampers and rest mass matrix; L-stable SDIRK2 with step doubling,
+/// order 2); `automatic`: nonlinear when there are objects, else linear.
+enum class ChainModel { automatic, linear, nonlinear };
+std::string_view to_string(ChainModel model);
+
 struct SimulationOptions {
   double duration = 1.0;              ///< [s]
   double output_rate = 1000.0;        ///< frames per second [Hz]; frames at k / output_rate, 0 included
@@ -39,6 +47,10 @@ struct SimulationOptions {
   double max_step = 0.0;              ///< [s]; 0: 1 / output_rate
   long max_steps = 50'000'000;
   bool record_nodes = true;           ///< node positions per frame (3(N+1) doubles a frame)
+  ChainModel model = ChainModel::automatic;
+  /// Objects the whisker may touch (contact.hpp); they need the nonlinear chain.
+  std::vector<LineObstacle> objects;
+  ContactLaw contact;
 };
 void validate(const SimulationOptions& options);
 
@@ -64,6 +76,10 @@ struct TimeSeries {
   Eigen::MatrixXd q;                                  ///< 3N x frames
   std::vector<std::vector<Eigen::Vector3d>> nodes_W;  ///< per frame, N+1 nodes [m] (if record_nodes)
   std::vector<Placement> placements;                  ///< base placement per frame
+  ChainModel model = ChainModel::linear;               ///< the equations integrated (never automatic)
+  std::vector<ContactChannels> contacts;              ///< one per object, per frame
+  std::vector<ContactEvent> events;                   ///< in time order
+  double max_penetration = 0.0;                       ///< largest -gap at any accepted step [m]
   long steps = 0, rejected_steps = 0;
   double smallest_step = 0.0, largest_step = 0.0;     ///< accepted steps [s]
 };

@@ -37,9 +37,9 @@ struct DynamicsCase {
   dynamics::SimulationOptions options;
   int mode_count = 10;                    ///< modes listed (`vibrissa modes`, summary.json)
   /// `vibrissa modes`: the modes about the equilibrium under this load (the "load" of `vibrissa solve`) instead
-  /// of about the rest shape; `contact` overrides how a contact holds (stick / slip; docs/dynamics.md).
+  /// of about the rest shape; `hold` overrides how a contact holds (stick / slip; docs/dynamics.md).
   std::optional<Load> load;
-  std::optional<dynamics::ContactModel> contact;
+  std::optional<dynamics::ContactModel> hold;
 };
 
 /// The "dynamics" object of a case (or of an array config): density, damping_ratio | joint_damping_time, gravity,

@@ -22,6 +22,16 @@ nlohmann::json parse_json_text(std::string_view text, const std::string& source,
 /// Reads a file of at most limits::max_json_file_bytes and parses it with parse_json_text.
 nlohmann::json read_json_input(const std::filesystem::path& path, bool allow_comments = false);
 
+/// The one rule for files an input names (docs/formats.md, "Paths"): a relative name is relative to the
+/// folder of the file that names it (`base_dir`), never to the current directory. Returns `input` with these
+/// names made absolute (lexically normal): `morphology.source` when it is a table (.csv, .json), the `file` of
+/// every mesh in `objects` (array configs) and of `load.object` (cases). Other values are left as they are.
+/// Readers call it on the JSON of a file before building from it, and outputs that copy an input (an
+/// array's config.json) keep the absolute names, so the copy means the same from any folder.
+nlohmann::json resolve_input_paths(nlohmann::json input, const std::filesystem::path& base_dir);
+/// One name under that rule: `name` itself when absolute, else absolute(base_dir / name), lexically normal.
+std::filesystem::path resolve_input_path(const std::filesystem::path& name, const std::filesystem::path& base_dir);
+
 /// A value as it appears in a message: compact JSON text, cut to limits::max_quoted_chars.
 std::string describe(const nlohmann::json& j);
 

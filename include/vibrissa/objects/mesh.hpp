@@ -33,6 +33,8 @@ class Mesh final : public Shape {
                                                const ObjectPose& pose = {});
 
   [[nodiscard]] SurfacePoint nearest(const Eigen::Vector3d& p) const override;
+  /// feature_id = 8 * triangle + code: code 0 the face, 1 + i the edge opposite its vertex i, 4 + i vertex i.
+  [[nodiscard]] SurfacePoint nearest_on_feature(const Eigen::Vector3d& p, std::int64_t feature_id) const override;
   [[nodiscard]] Bounds bounds() const override { return bounds_; }
   [[nodiscard]] bool needs_thickness() const override { return true; }
   [[nodiscard]] ShapeDescription describe() const override;
@@ -47,6 +49,9 @@ class Mesh final : public Shape {
 
  private:
   struct Tree;
+  /// The query at p of feature `code` of triangle f continued as a plane, line or point (q: its nearest point).
+  [[nodiscard]] SurfacePoint feature_point(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::size_t f,
+                                           int code) const;
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<std::array<int, 3>> triangles_;
   std::vector<Eigen::Vector3d> face_normal_;              // unit

@@ -38,6 +38,9 @@ struct SurfacePoint {
   Eigen::Matrix3d normal_derivative = Eigen::Matrix3d::Zero();  ///< d normal / d p [1/m] (symmetric)
   SurfaceFeature feature = SurfaceFeature::face;
   Eigen::Vector3d edge_direction = Eigen::Vector3d::Zero();  ///< unit tangent of the nearest edge (edges only)
+  /// Which face, edge or vertex of a shape with creases is nearest (shape-specific; -1: a smooth shape), for
+  /// Shape::nearest_on_feature.
+  std::int64_t feature_id = -1;
 };
 
 /// Axis-aligned bounds (infinite for unbounded shapes) [m].
@@ -83,6 +86,14 @@ class Shape {
   /// The query at p (shape frame). Defined everywhere: on a degenerate point (the centre of a sphere, the axis
   /// of a cylinder) the normal is a fixed choice and the derivative is zero.
   [[nodiscard]] virtual SurfacePoint nearest(const Eigen::Vector3d& p) const = 0;
+  /// The query against one feature of an earlier answer (its `feature_id`) continued as a smooth surface: a
+  /// face's plane, an edge's line, a vertex's point. It equals nearest(p) wherever that feature is nearest, and
+  /// is smooth where nearest() turns from one feature to the next: the object solves hold a feature while
+  /// Newton converges and then check it (docs/objects.md, "Solver"). Smooth shapes (feature_id -1): nearest().
+  [[nodiscard]] virtual SurfacePoint nearest_on_feature(const Eigen::Vector3d& p, std::int64_t feature_id) const {
+    (void)feature_id;
+    return nearest(p);
+  }
   /// Signed distance alone (the same number as nearest().signed_distance; shapes may answer it faster).
   [[nodiscard]] virtual double signed_distance(const Eigen::Vector3d& p) const { return nearest(p).signed_distance; }
   [[nodiscard]] virtual Bounds bounds() const = 0;

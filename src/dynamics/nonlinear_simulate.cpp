@@ -1,0 +1,464 @@
+// Large-deflection motion of the chain with contacts (docs/dynamics.md, "Large deflection" and "Contact during
+// motion"; include/vibrissa/dynamics/simulate.hpp, chain_kinematics.hpp, contact.hpp).
+//
+// Equations, in the modal coordinates of the rest chain (q = Phi eta, Phi^T M Phi = I, Phi^T K Phi = diag(k)):
+//     eta'' + diag(c) eta' + diag(k) eta = Phi^T (G u(t) + Q(q, q', t)),
+// Q = sum over contacts of J(q)^T F: the contact forces through the exact kinematics of the deflected chain. The
+// joint springs are those of the quasi-static chain (linear_model.hpp: the inverse of each joint's compliance), so
+// with the exact kinematics the equilibrium K theta_j = J_r(theta_j)^T m_j (J_r the right Jacobian of SO(3), m_j
+// the moment of the distal load in the joint's distal frame) is the quasi-static walk's law
+// theta_j = K^-1 (m_j + (K^-1 m_j) x m_j / 2) (core/chain.hpp) to second order in the joint rotation.
+// The mass matrix is the rest chain's (the inertia is linearised; the elastic and contact forces are not).
+//
+// Integrator: Alexander's two-stage SDIRK (gamma = 1 - 1/sqrt 2; L-stable, stiffly accurate, order 2), each stage
+// solved by Newton's method on the stage's modal rates; the contacts make the Newton matrix diag + a rank-3 term
+// per contact (Woodbury). Step-doubling error control as in the linear path.
+#include "nonlinear_simulate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/LU>
+
+#include "vibrissa/core/checks.hpp"
+#include "vibrissa/dynamics/chain_kinematics.hpp"
+
+namespace vibrissa::dynamics::detail {
+namespace {
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
+  Eigen::Matrix3d m;
+  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+  return m;
+}
+
+const double gamma_sdirk = 1.0 - 1.0 / std::sqrt(2.0);
+
+/// One contact's evaluation at a stage.
+struct ContactValue {
+  ContactState state = ContactState::none;
+  double gap = std::numeric_limits<double>::infinity();
+  double arc_length = 0.0;
+  double anchor = 0.0;  ///< stick point's coordinate along the line [m]
+  double side = 0.0;    ///< +-1: the side of the line the whisker is on; 0: not known
+  int link = 0;
+  Eigen::Vector3d x_B = Eigen::Vector3d::Zero(), force_B = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point_W = Eigen::Vector3d::Zero(), force_W = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d S_x = Eigen::Matrix3d::Zero(), S_v = Eigen::Matrix3d::Zero();  ///< dF/dx, dF/dx' (B)
+};
+
+struct State {
+  Eigen::VectorXd eta, rate;
+  std::vector<ContactValue> contacts;
+  Eigen::VectorXd contact_force;  ///< modal, Phi^T Q
+};
+
+/// The obstacles in B at one instant and the base's motion.
+struct Frame {
+  BaseMotion base;
+  Eigen::VectorXd modal_input;
+};
+
+class Integrator {
+ public:
+  Integrator(const Whisker& w, const LinearModel& model, const Modes& modes, const BaseTrajectory& base,
+             const Eigen::Vector3d& gravity_W, const SimulationOptions& opt)
+      : w_(w), model_(model), Phi_(modes.joint_shapes), base_(base), gravity_(gravity_W), opt_(opt) {
+    k_ = modes.omega.cwiseProduct(modes.omega);
+    c_ = 2.0 * modes.damping_ratio.cwiseProduct(modes.omega);
+    P_ = Phi_.transpose() * model.input;
+    m_ = Phi_.cols();
+    kn_ = opt.contact.stiffness;
+    kt_ = opt.contact.tangential_stiffness > 0.0 ? opt.contact.tangential_stiffness : kn_;
+    for (const LineObstacle& o : opt.objects) {
+      LineObstacle u = o;
+      u.direction_W = o.direction_W.normalized();
+      objects_.push_back(u);
+    }
+  }
+
+  Frame frame(double t) const {
+    Frame f;
+    f.base = base_(t);
+    f.modal_input = P_ * base_input(f.base, gravity_);
+    return f;
+  }
+
+  double energy_norm(const Eigen::VectorXd& eta, const Eigen::VectorXd& rate) const {
+    return std::sqrt(k_.dot(eta.cwiseProduct(eta)) + rate.squaredNorm());
+  }
+
+  /// Contacts at (eta, rate); `previous`: the contact states and anchors at the start of the step.
+  void evaluate_contacts(const Frame& f, const Eigen::VectorXd& eta, const Eigen::VectorXd& rate,
+                         const std::vector<ContactValue>& previous, std::vector<ContactValue>& out,
+                         Eigen::VectorXd& modal_force, std::vector<Eigen::MatrixXd>* U,
+                         const std::vector<ContactState>* frozen = nullptr) {
+    q_.noalias() = Phi_ * eta;
+    chain_kinematics(w_, q_, kin_);
+    out.assign(objects_.size(), ContactValue{});
+    modal_force.setZero(m_);
+    if (U) U->assign(objects_.size(), Eigen::MatrixXd());
+    const Eigen::Matrix3d& R = f.base.R_WB;
+    const auto& radii = w_.node_radii();
+    const auto& arc = w_.node_arc_lengths();
+    bool rate_ready = false;
+    for (std::size_t o = 0; o < objects_.size(); ++o) {
+      const LineObstacle& ob = objects_[o];
+      const Eigen::Vector3d c_B = R.transpose() * (ob.point_W - f.base.p_W_base);
+      const Eigen::Vector3d e_B = R.transpose() * ob.direction_W;
+      ContactValue& cv = out[o];
+      // Nearest approach of the centre line (segment by segment) to the line, minus the radii.
+      double best = std::numeric_limits<double>::infinity(), best_u_raw = 0.0;
+      Eigen::Vector3d best_r = Eigen::Vector3d::Zero(), best_t = Eigen::Vector3d::UnitX();
+      for (std::size_t i = 0; i + 1 < kin_.nodes_B.size(); ++i) {
+        const Eigen::Vector3d p = kin_.nodes_B[i], d = kin_.nodes_B[i + 1] - p, w0 = p - c_B;
+        const double a = d.squaredNorm(), b = d.dot(e_B), denom = a - b * b;
+        const double u_raw = denom > 1e-12 * a ? (b * e_B.dot(w0) - d.dot(w0)) / denom : 0.5;
+        const double u = std::clamp(u_raw, 0.0, 1.0);
+        const Eigen::Vector3d x = p + u * d;
+        const Eigen::Vector3d r = x - c_B - e_B.dot(x - c_B) * e_B;
+        const double reach = ob.radius + (ob.thickness ? radii[i] + u * (radii[i + 1] - radii[i]) : 0.0);
+        const double gap = r.norm() - reach;
+        if (gap < best) {
+          best = gap;
+          best_u_raw = u_raw;
+          best_r = r;
+          best_t = d;
+          cv.gap = gap;
+          cv.link = static_cast<int>(i);
+          cv.arc_length = arc[i] + u * (arc[i + 1] - arc[i]);
+          cv.x_B = x;
+        }
+      }
+      // Which side of the line the whisker is on: the sign of r . (t x e) where the nearest point lies inside its
+      // link (where the centre line can cross the line), carried from step to step, so that a centre line pushed
+      // across an edge (radius 0) within one step counts as a penetration, not as the other side. Beyond the
+      // whisker's ends (the nearest point is an end node) the side is forgotten and read again later.
+      const double side = best_r.dot(best_t.cross(e_B)) >= 0.0 ? 1.0 : -1.0;
+      const bool interior = best_u_raw > 0.0 && best_u_raw < 1.0;
+      const double side_before = previous[o].side;
+      cv.side = interior ? (side_before != 0.0 ? side_before : side) : 0.0;
+      const bool crossed = interior && side_before != 0.0 && side != side_before;
+      const double dist = best_r.norm();
+      if (crossed) cv.gap = -dist - (dist - cv.gap);  // -(distance) - reach
+      cv.point_W = f.base.p_W_base + R * cv.x_B;
+      const ContactValue& before = previous[o];
+      cv.anchor = before.anchor;
+      if (cv.gap >= 0.0) continue;
+      // In contact: normal n (from the line to the whisker), tangent e (along the line).
+      const Eigen::Vector3d rel = cv.x_B - c_B;
+      Eigen::Vector3d n = dist > 0.0 ? Eigen::Vector3d(best_r / dist) : Eigen::Vector3d(best_t.cross(e_B).normalized());
+      if (crossed) n = -n;
+      if (!rate_ready) {
+        q_dot_.noalias() = Phi_ * rate;
+        rate_ready = true;
+      }
+      Eigen::Vector3d v_B = R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B));
+      for (int j = 0; j <= cv.link; ++j) {
+        const std::size_t u = static_cast<std::size_t>(j);
+        v_B += (kin_.joint_axes_B[u] * q_dot_.segment<3>(3 * j)).cross(cv.x_B - kin_.nodes_B[u]);
+      }
+      Eigen::MatrixXd Jt = Eigen::MatrixXd::Zero(3 * (cv.link + 1), 3);  // J^T, joints <= link
+      for (int j = 0; j <= cv.link; ++j) {
+        const std::size_t u = static_cast<std::size_t>(j);
+        Jt.block<3, 3>(3 * j, 0) = kin_.joint_axes_B[u].transpose() * skew(cv.x_B - kin_.nodes_B[u]);
+      }
+      Eigen::MatrixXd Ui(m_, 3);  // Phi^T J^T (a coefficient-wise product: 3 columns)
+      Ui.noalias() = Phi_.topRows(3 * (cv.link + 1)).transpose().lazyProduct(Jt);
+      // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n.
+      const double inv_mass = (Ui * n).squaredNorm();
+      const double cn = 2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / std::max(inv_mass, 1e-300));
+      const double gap_rate = n.dot(v_B);
+      const double fn = std::max(0.0, -kn_ * cv.gap - cn * gap_rate);
+      const double lambda = e_B.dot(rel);
+      if (before.state == ContactState::none) cv.anchor = lambda;  // touches: sticks where it touched
+      const double mu = ob.friction_coefficient;
+      double ft = 0.0;
+      if (fn > 0.0) {
+        const bool damped = -kn_ * cv.gap - cn * gap_rate > 0.0 && cn * gap_rate != 0.0;
+        const Eigen::Vector3d dfn_dx = -kn_ * n, dfn_dv = damped ? Eigen::Vector3d(-cn * n) : Eigen::Vector3d::Zero();
+        cv.S_x = n * dfn_dx.transpose();
+        cv.S_v = n * dfn_dv.transpose();
+        // Elastic-plastic friction: the stick spring's force decides stick or slip (so that the state does not
+        // chatter); a damper on the stick spring (critical for the effective mass along the line, as the normal
+        // one) adds to the force, which stays inside the cone.
+        const double ct = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * e_B).squaredNorm(), 1e-300));
+        const double spring = -kt_ * (lambda - cv.anchor), damper = -ct * e_B.dot(v_B);
+        // Newton's later iterations keep the stick/slip branch of the earlier ones (the switch is not smooth: near
+        // the cone's edge the iteration would cycle); the stage's final evaluation decides it again.
+        const ContactState keep = frozen ? (*frozen)[o] : ContactState::none;
+        const bool stick = keep != ContactState::none ? keep == ContactState::stick && mu > 0.0
+                                                      : mu > 0.0 && std::abs(spring) <= mu * fn;
+        if (stick) {
+          cv.state = ContactState::stick;
+          ft = spring + damper;
+          cv.S_x -= kt_ * e_B * e_B.transpose();
+          if (keep != ContactState::none) {
+            cv.S_v -= ct * e_B * e_B.transpose();
+          } else if (std::abs(ft) > mu * fn) {
+            ft = ft > 0.0 ? mu * fn : -mu * fn;
+          } else {
+            cv.S_v -= ct * e_B * e_B.transpose();
+          }
+        } else {
+          cv.state = ContactState::slip;
+          const double sign = spring >= 0.0 ? 1.0 : -1.0;
+          ft = sign * mu * fn;
+          cv.anchor = lambda + ft / kt_;  // the stick point slides along with the contact
+          cv.S_x += (sign * mu) * e_B * dfn_dx.transpose();
+          cv.S_v += (sign * mu) * e_B * dfn_dv.transpose();
+        }
+      } else {
+        cv.anchor = lambda;
+        continue;  // inside, but the damper pulls harder than the spring pushes: no force
+      }
+      cv.force_B = fn * n + ft * e_B;
+      cv.force_W = R * cv.force_B;
+      modal_force.noalias() += Ui * cv.force_B;
+      if (U) (*U)[o] = std::move(Ui);
+    }
+  }
+
+  /// Solves the stage Y = A + g f(t, Y) for its rates. Returns false when Newton's method does not converge.
+  bool stage(const Frame& f, double g, const Eigen::VectorXd& A_eta, const Eigen::VectorXd& A_rate,
+             const std::vector<ContactValue>& previous, double tol, State& out) {
+    const Eigen::VectorXd D = Eigen::VectorXd::Ones(m_) + g * c_ + (g * g) * k_;
+    const Eigen::VectorXd b0 = A_rate + g * (f.modal_input - k_.cwiseProduct(A_eta));
+    Eigen::VectorXd Y = b0.cwiseQuotient(D);
+    std::vector<Eigen::MatrixXd> U;
+    std::vector<ContactState> frozen;
+    for (int it = 0; it < 25; ++it) {
+      out.eta = A_eta + g * Y;
+      evaluate_contacts(f, out.eta, Y, previous, out.contacts, out.contact_force, &U, it >= 3 ? &frozen : nullptr);
+      if (it == 2) {
+        frozen.clear();
+        for (const ContactValue& cv : out.contacts) frozen.push_back(cv.state);
+      }
+      out.rate = Y;
+      const Eigen::VectorXd r = D.cwiseProduct(Y) - b0 - g * out.contact_force;
+      // Newton matrix D - sum U S U^T with S = g (g S_x + S_v): Woodbury with the active contacts stacked.
+      std::vector<Eigen::Index> active;
+      for (std::size_t o = 0; o < U.size(); ++o)
+        if (U[o].size() != 0) active.push_back(static_cast<Eigen::Index>(o));
+      if (active.empty() && it == 0 && out.contact_force.isZero(0.0)) return true;  // no contact: exact
+      Eigen::VectorXd delta;
+      const Eigen::VectorXd Dinv_r = r.cwiseQuotient(D);
+      if (active.empty()) {
+        delta = -Dinv_r;
+      } else {
+        const Eigen::Index p = 3 * static_cast<Eigen::Index>(active.size());
+        Eigen::MatrixXd Us(m_, p);
+        Eigen::MatrixXd S = Eigen::MatrixXd::Zero(p, p);
+        for (std::size_t a = 0; a < active.size(); ++a) {
+          const ContactValue& cv = out.contacts[static_cast<std::size_t>(active[a])];
+          Us.middleCols<3>(3 * static_cast<Eigen::Index>(a)) = U[static_cast<std::size_t>(active[a])];
+          S.block<3, 3>(3 * static_cast<Eigen::Index>(a), 3 * static_cast<Eigen::Index>(a)) =
+              -g * (g * cv.S_x + cv.S_v);  // S' of (D + U S' U^T)
+        }
+        const Eigen::MatrixXd DinvU = Us.array().colwise() / D.array();
+        const Eigen::MatrixXd core = Eigen::MatrixXd::Identity(p, p) + Us.transpose() * DinvU * S;
+        delta = -(Dinv_r - DinvU * (S * core.partialPivLu().solve(Us.transpose() * Dinv_r)));
+      }
+      Y += delta;
+      const double step = std::sqrt(k_.dot((g * delta).cwiseProduct(g * delta)) + delta.squaredNorm());
+      if (step <= 1e-3 * tol) {
+        out.eta = A_eta + g * Y;
+        out.rate = Y;
+        evaluate_contacts(f, out.eta, Y, previous, out.contacts, out.contact_force, nullptr);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// One SDIRK2 step of length h from (t, y).
+  bool step(double t, double h, const State& y, double tol, State& out) {
+    const double g = gamma_sdirk * h;
+    State Y1;
+    if (!stage(frame(t + g), g, y.eta, y.rate, y.contacts, tol, Y1)) return false;
+    // f(Y1) = (Y1 - y) / g; stage 2: Y2 = y + (1 - gamma) h f(Y1) + g f(t + h, Y2).
+    const double w = (1.0 - gamma_sdirk) / gamma_sdirk;
+    const Eigen::VectorXd A_eta = y.eta + w * (Y1.eta - y.eta), A_rate = y.rate + w * (Y1.rate - y.rate);
+    return stage(frame(t + h), g, A_eta, A_rate, y.contacts, tol, out);
+  }
+
+  TimeSeries run(const InitialState& initial) {
+    TimeSeries ts;
+    ts.model = ChainModel::nonlinear;
+    const Eigen::Index n = model_.size();
+    State y;
+    y.eta = Eigen::VectorXd::Zero(m_);
+    y.rate = Eigen::VectorXd::Zero(m_);
+    const Eigen::MatrixXd Mphi = model_.mass * Phi_;
+    if (initial.q.size() != 0) {
+      if (initial.q.size() != n || (initial.q_dot.size() != 0 && initial.q_dot.size() != n))
+        throw std::invalid_argument("initial state must have " + std::to_string(n) + " joint coordinates, got " +
+                                    std::to_string(initial.q.size()));
+      y.eta = Mphi.transpose() * initial.q;
+      if (initial.q_dot.size() != 0) y.rate = Mphi.transpose() * initial.q_dot;
+    } else if (!initial.undeformed) {
+      y.eta = frame(0.0).modal_input.cwiseQuotient(k_);
+    }
+    {
+      const std::vector<ContactValue> none(objects_.size());
+      evaluate_contacts(frame(0.0), y.eta, y.rate, none, y.contacts, y.contact_force, nullptr);
+      for (std::size_t o = 0; o < objects_.size(); ++o)
+        if (y.contacts[o].state != ContactState::none)
+          ts.events.push_back(event(0.0, ContactEventType::touch, o, y.contacts[o]));
+    }
+    const long frames = static_cast<long>(std::floor(opt_.duration * opt_.output_rate * (1.0 + 1e-12))) + 1;
+    ts.q.resize(n, frames);
+    ts.contacts.assign(objects_.size(), ContactChannels{});
+    record(ts, 0, 0.0, y);
+
+    const double max_step = opt_.max_step > 0.0 ? opt_.max_step : 1.0 / opt_.output_rate;
+    double t = 0.0, h_next = std::min(max_step, 1e-5);
+    double scale = energy_norm(y.eta, y.rate);
+    State full, mid, half;
+    for (long f = 1; f < frames; ++f) {
+      const double t_out = static_cast<double>(f) / opt_.output_rate;
+      while (t < t_out) {
+        if (ts.steps + ts.rejected_steps >= opt_.max_steps) {
+          ts.status = SimulationStatus::max_steps;
+          return ts;
+        }
+        double h = h_next;
+        const bool last = t + 1.01 * h >= t_out;
+        if (last) h = t_out - t;
+        const double tol =
+            opt_.relative_tolerance * std::max(scale, energy_norm(y.eta, y.rate)) + opt_.absolute_tolerance;
+        const bool ok = step(t, h, y, tol, full) && step(t, 0.5 * h, y, tol, mid) &&
+                        step(t + 0.5 * h, 0.5 * h, mid, tol, half);
+        double factor = 0.25;
+        bool accept = false;
+        if (ok) {
+          const double err = energy_norm(half.eta - full.eta, half.rate - full.rate) / 3.0;
+          factor = err > 0.0 ? std::clamp(0.9 * std::cbrt(tol / err), 0.2, 4.0) : 4.0;
+          accept = err <= tol;
+        }
+        if (accept) {
+          note_events(ts, t, 0.5 * h, y, mid);
+          note_events(ts, t + 0.5 * h, 0.5 * h, mid, half);
+          y = half;
+          t = last ? t_out : t + h;
+          ++ts.steps;
+          ts.smallest_step = ts.steps == 1 ? h : std::min(ts.smallest_step, h);
+          ts.largest_step = std::max(ts.largest_step, h);
+          scale = std::max(scale, energy_norm(y.eta, y.rate));
+          if (!(last && h < h_next)) h_next = std::min(h * factor, max_step);
+        } else {
+          ++ts.rejected_steps;
+          h_next = h * factor;
+          if (h_next < 1e-14 * std::max(1.0, t_out)) {
+            ts.status = SimulationStatus::step_too_small;
+            return ts;
+          }
+        }
+      }
+      record(ts, f, t_out, y);
+    }
+    return ts;
+  }
+
+ private:
+  static ContactEvent event(double t, ContactEventType type, std::size_t o, const ContactValue& cv) {
+    return ContactEvent{t, type, static_cast<int>(o), cv.arc_length, cv.point_W, cv.force_W};
+  }
+
+  void note_events(TimeSeries& ts, double t0, double h, const State& a, const State& b) {
+    for (std::size_t o = 0; o < objects_.size(); ++o) {
+      const ContactValue &p = a.contacts[o], &c = b.contacts[o];
+      ts.max_penetration = std::max(ts.max_penetration, -c.gap);
+      const bool was = p.state != ContactState::none, is = c.state != ContactState::none;
+      // A touch or a release: where the gap crosses zero, linearly within the step.
+      auto crossing = [&] {
+        const double d = p.gap - c.gap;
+        return d != 0.0 ? t0 + h * std::clamp(p.gap / d, 0.0, 1.0) : t0 + h;
+      };
+      if (!was && is) {
+        ts.events.push_back(event(crossing(), ContactEventType::touch, o, c));
+      } else if (was && !is) {
+        ts.events.push_back(event(crossing(), ContactEventType::release, o, p));
+      }
+      if (objects_[o].friction_coefficient > 0.0 && is) {
+        if (c.state == ContactState::slip && p.state != ContactState::slip)
+          ts.events.push_back(event(t0 + h, ContactEventType::slip, o, c));
+        else if (c.state == ContactState::stick && p.state == ContactState::slip)
+          ts.events.push_back(event(t0 + h, ContactEventType::stick, o, c));
+      }
+    }
+  }
+
+  void record(TimeSeries& ts, long f, double t, const State& s) {
+    const Frame fr = frame(t);
+    const BaseMotion& b = fr.base;
+    const Eigen::Matrix<double, base_input_size, 1> u = base_input(b, gravity_);
+    const Eigen::VectorXd acc = fr.modal_input + s.contact_force - c_.cwiseProduct(s.rate) - k_.cwiseProduct(s.eta);
+    Eigen::Matrix<double, 6, 1> wrench = model_.base_from_input * u + model_.base_from_acceleration * (Phi_ * acc);
+    for (const ContactValue& cv : s.contacts) {
+      wrench.head<3>() += cv.force_B;
+      wrench.tail<3>() += (cv.x_B - w_.rest_nodes_B()[0]).cross(cv.force_B);
+    }
+    ts.time.push_back(t);
+    ts.force_B.push_back(wrench.head<3>());
+    ts.moment_B.push_back(wrench.tail<3>());
+    ts.force_W.push_back(b.R_WB * wrench.head<3>());
+    ts.moment_W.push_back(b.R_WB * wrench.tail<3>());
+    q_.noalias() = Phi_ * s.eta;
+    ts.q.col(f) = q_;
+    chain_kinematics(w_, q_, kin_);
+    ts.kinetic_energy.push_back(0.5 * s.rate.squaredNorm());
+    ts.elastic_energy.push_back(0.5 * k_.dot(s.eta.cwiseProduct(s.eta)));
+    const std::size_t N = kin_.nodes_B.size() - 1;
+    ts.tip_displacement_B.push_back(kin_.nodes_B[N] - w_.rest_nodes_B()[N]);
+    const Placement X(b.R_WB, b.p_W_base);
+    ts.placements.push_back(X);
+    if (opt_.record_nodes) {
+      std::vector<Eigen::Vector3d> nodes(N + 1);
+      for (std::size_t i = 0; i <= N; ++i) nodes[i] = X.to_world(kin_.nodes_B[i]);
+      ts.nodes_W.push_back(std::move(nodes));
+    }
+    for (std::size_t o = 0; o < s.contacts.size(); ++o) {
+      const ContactValue& cv = s.contacts[o];
+      ContactChannels& ch = ts.contacts[o];
+      ch.state.push_back(cv.state);
+      ch.arc_length.push_back(cv.arc_length);
+      ch.gap.push_back(cv.gap);
+      ch.point_W.push_back(cv.point_W);
+      ch.force_W.push_back(cv.force_W);
+    }
+  }
+
+  const Whisker& w_;
+  const LinearModel& model_;
+  const Eigen::MatrixXd& Phi_;
+  const BaseTrajectory& base_;
+  Eigen::Vector3d gravity_;
+  const SimulationOptions& opt_;
+  Eigen::VectorXd k_, c_;
+  Eigen::MatrixXd P_;
+  Eigen::Index m_ = 0;
+  double kn_ = 0.0, kt_ = 0.0;
+  std::vector<LineObstacle> objects_;
+  Eigen::VectorXd q_, q_dot_;
+  ChainKinematics kin_;
+};
+
+}  // namespace
+
+TimeSeries simulate_nonlinear(const Whisker& w, const LinearModel& model, const Modes& modes,
+                              const BaseTrajectory& base, const Eigen::Vector3d& gravity_W,
+                              const SimulationOptions& options, const InitialState& initial) {
+  validate(options.contact);
+  for (const LineObstacle& o : options.objects) validate(o);
+  if (modes.count() != model.size())
+    throw std::invalid_argument("simulate needs all " + std::to_string(model.size()) + " modes of the model, got " +
+                                std::to_string(modes.count()));
+  Integrator integrator(w, model, modes, base, gravity_W, options);
+  return integrator.run(initial);
+}
+
+}  // namespace vibrissa::dynamics::detail
