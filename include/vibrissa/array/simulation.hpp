@@ -43,7 +43,7 @@ struct SimulationConfig {
   int threads = 0;                 ///< OpenMP threads (0: all)
   /// `vibrissa array --dynamics` (docs/array.md, docs/dynamics.md): every whisker driven by the whisking and head
   /// motion through the dynamics integrator (dynamics/simulate.hpp), in air: the objects are not touched (contact
-  /// during motion is not in the integrator yet). Frames must then be equally spaced.
+  /// during motion is not wired into the array yet). Frames must then be equally spaced.
   std::optional<dynamics::DynamicsProperties> dynamics;
 };
 
