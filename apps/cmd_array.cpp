@@ -25,7 +25,7 @@ namespace vibrissa::cli {
 namespace {
 struct ArrayArgs {
   std::string config, out = "array_results", pitches;
-  bool csv = false, no_figures = false, gif = false, animation = false, print_default = false;
+  bool csv = false, no_figures = false, gif = false, animation = false, print_default = false, dynamics = false;
   int threads = 0;
   int frames = -1;     ///< animation: rendered frames (output.render_count); -1: the config's
   double fps = 0.0;    ///< animation: frames per second (0: the script's default)
@@ -59,6 +59,9 @@ void register_array(CLI::App& app) {
   cmd->add_option("--pitches", a->pitches, "override head.pitches_deg, e.g. -20,-10,0,10,20");
   cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")
       ->check(number_in(0, limits::max_threads));
+  cmd->add_flag("--dynamics", a->dynamics,
+                "drive every whisker through the dynamics integrator (in air: the objects are not touched; the "
+                "config's \"dynamics\" sets density, damping, air drag); see docs/dynamics.md");
   cmd->add_flag("--csv", a->csv, "also write array.csv (one row per pitch, whisker and frame)");
   cmd->add_flag("--animation", a->animation,
                 "also write the MP4 animation and its still (the interactive view.html is written by default)");
@@ -83,6 +86,7 @@ void register_array(CLI::App& app) {
       j["head"]["pitches_deg"] = list;
     }
     if (a->threads > 0) j["threads"] = a->threads;
+    if (a->dynamics && !j.contains("dynamics")) j["dynamics"] = nlohmann::json::object();
     if (a->frames >= 0) j["output"]["render_count"] = a->frames;
     const fs::path base = a->config.empty() ? fs::current_path() : fs::path(a->config).parent_path();
     j = io::resolve_input_paths(j, base);  // config.json names its files absolutely: it means the same anywhere
@@ -102,8 +106,13 @@ void register_array(CLI::App& app) {
       };
       result = array::simulate_array(config, control);
     }
+    if (config.dynamics)
+      std::cerr << "vibrissa: warning: --dynamics runs in air: the config's objects are not touched (contact during "
+                   "motion is not wired into the array yet)\n";
     std::cout << "simulated " << total << " whisker-frames in " << std::fixed << std::setprecision(2)
-              << result.wall_seconds << " s (" << result.solves << " edge solves";
+              << result.wall_seconds << " s (";
+    if (config.dynamics) std::cout << "dynamics: " << result.dynamics_steps << " integrator steps, ";
+    std::cout << result.solves << " edge solves";
     if (result.failed_solves) std::cout << ", " << result.failed_solves << " without equilibrium -> pushed past";
     std::cout << ")\n";
     for (const std::string& w : array::array_warnings(result)) std::cerr << "vibrissa: warning: " << w << "\n";

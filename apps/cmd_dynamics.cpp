@@ -14,11 +14,12 @@
 namespace vibrissa::cli {
 
 void register_modes(CLI::App& app) {
-  auto* cmd = app.add_subcommand("modes", "Natural vibration modes of a whisker about its rest shape; see docs/dynamics.md");
+  auto* cmd = app.add_subcommand("modes", "Natural vibration modes of a whisker about its rest shape, or about its "
+                                          "equilibrium under the case's \"load\"; see docs/dynamics.md");
   auto case_path = std::make_shared<std::string>();
   auto out_path = std::make_shared<std::string>();
   auto count = std::make_shared<int>(0);
-  cmd->add_option("CASE", *case_path, "case file (JSON: whisker, dynamics)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("CASE", *case_path, "case file (JSON: whisker, dynamics, optional load and contact)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", *out_path, "write the modes here (JSON) instead of standard output")
       ->check(output_path());
   cmd->add_option("-n,--count", *count, "number of modes (default: the case's \"modes\", else 10)")
@@ -26,9 +27,18 @@ void register_modes(CLI::App& app) {
   cmd->callback([case_path, out_path, count] {
     const io::DynamicsCase c = io::dynamics_case_from_json(read_json_file(*case_path));
     const int n = *count > 0 ? *count : c.mode_count;
-    const dynamics::Modes m = dynamics::modes(c.whisker, c.properties, n);
-    const nlohmann::json result = io::modes_to_json(m, c.whisker, c);
+    const io::CaseModes cm = io::case_modes(c, n);
+    const dynamics::Modes& m = cm.modes;
+    nlohmann::json result = io::modes_to_json(m, c.whisker, c);
+    if (cm.deflected) result["equilibrium"] = io::equilibrium_to_json(cm, c.whisker);
     if (out_path->empty()) {
+      if (cm.deflected) {
+        const auto& e = result["equilibrium"];
+        std::cout << "about the equilibrium under the load (" << e["load"].get<std::string>() << ", contact "
+                  << e["contact"].get<std::string>() << ", " << cm.deflected->constraints
+                  << " constraints): force_B " << e["force_B"].dump() << " N at s = " << cm.held.arc_length
+                  << " m, tip_B " << e["tip_B"].dump() << " m\n";
+      }
       std::cout << "mode  frequency_Hz  damped_Hz  damping_ratio  torsion_fraction\n";
       for (int i = 0; i < m.count(); ++i)
         std::printf("%4d  %12.4f  %9.4f  %13.4f  %16.3f\n", i + 1, m.frequency_hz(i), m.damped_frequency_hz(i),
@@ -55,7 +65,8 @@ void register_dynamics(CLI::App& app) {
     const dynamics::LinearModel model = dynamics::linear_model(c.whisker, c.properties);
     const dynamics::Modes all = dynamics::modes(model, c.whisker);
     const dynamics::TimeSeries ts = dynamics::simulate(c.whisker, model, all, io::base_trajectory(c),
-                                                       c.properties.gravity_W, c.options, io::initial_state(c, model));
+                                                       c.properties.gravity_W, c.options, io::initial_state(c, model),
+                                                       io::external_load(c));
     const nlohmann::json summary = io::dynamics_summary(ts, all, c);
     io::write_dynamics_outputs(ts, summary, *out_dir);
     std::cout << summary.dump(2) << "\n";

@@ -66,7 +66,7 @@ void bind_array(py::module_& m) {
   m.def(
       "_simulate_array",
       [](const std::optional<std::string>& config_text, const std::optional<std::string>& path,
-         const py::object& threads, const py::object& progress) {
+         const py::object& threads, const py::object& progress, bool dynamics) {
         namespace fs = std::filesystem;
         ArrayRun run;
         fs::path base = fs::current_path();
@@ -82,12 +82,13 @@ void bind_array(py::module_& m) {
           const int n = thread_count_arg(threads, 0);
           if (n > 0) run.config_json["threads"] = n;
         }
+        if (dynamics && !run.config_json.contains("dynamics")) run.config_json["dynamics"] = nlohmann::json::object();
         run.config = io::array_config_from_json(run.config_json, base);
         run.result = run_interruptible(
             [&](const RunControl& control) { return array::simulate_array(run.config, control); }, progress);
         return run;
       },
-      py::arg("config_text"), py::arg("path"), py::arg("threads"), py::arg("progress"));
+      py::arg("config_text"), py::arg("path"), py::arg("threads"), py::arg("progress"), py::arg("dynamics") = false);
 }
 
 }  // namespace vibrissa::python

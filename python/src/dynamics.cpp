@@ -44,8 +44,12 @@ void bind_dynamics(py::module_& m) {
       "_modes",
       [](const Whisker& w, const std::string& text, int count) {
         const io::DynamicsCase c = settings(w, text);
-        py::gil_scoped_release release;
-        return dynamics::modes(w, c.properties, count > 0 ? count : c.mode_count);
+        io::CaseModes cm;
+        {
+          py::gil_scoped_release release;
+          cm = io::case_modes(c, count > 0 ? count : c.mode_count);
+        }
+        return py::make_tuple(cm.modes, cm.deflected ? io::equilibrium_to_json(cm, w).dump() : std::string());
       },
       py::arg("whisker"), py::arg("settings_json"), py::arg("count"));
   py::class_<DynamicsRun>(m, "_DynamicsRun")
@@ -67,7 +71,7 @@ void bind_dynamics(py::module_& m) {
         const dynamics::LinearModel model = dynamics::linear_model(c.whisker, c.properties);
         DynamicsRun run{{}, dynamics::modes(model, c.whisker), {}};
         run.series = dynamics::simulate(c.whisker, model, run.modes, io::base_trajectory(c), c.properties.gravity_W,
-                                        c.options, io::initial_state(c, model));
+                                        c.options, io::initial_state(c, model), io::external_load(c));
         run.summary = io::dynamics_summary(run.series, run.modes, c);
         return run;
       },

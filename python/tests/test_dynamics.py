@@ -105,3 +105,40 @@ def test_peg_release_example(tmp_path):
     assert done.returncode == 0, done.stderr
     assert "released:" in done.stdout
     assert (tmp_path / "out" / "dynamics.png").stat().st_size > 10_000
+
+
+def test_modes_about_a_peg_match_the_cli(cli, tmp_path):
+    # A peg held stuck (point mode) stiffens the whisker; Python and `vibrissa modes` give the same numbers.
+    load = {"mode": "point", "point": [0.02, 0.003, 0.0]}
+    case = tmp_path / "peg.json"
+    case.write_text(json.dumps({"whisker": CASE["whisker"], "dynamics": CASE["dynamics"], "load": load}))
+    done = subprocess.run([cli, "modes", str(case), "-n", "4", "-o", str(tmp_path / "modes.json")],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    from_cli = json.loads((tmp_path / "modes.json").read_text())
+    m = vibrissa.modes(whisker(), 4, load=load, damping_ratio=0.1)
+    np.testing.assert_array_equal(m.frequency, [x["frequency"] for x in from_cli["modes"]])
+    assert m.equilibrium["contact"] == "stick" and m.equilibrium["constraints"] == 3
+    assert from_cli["equilibrium"]["force_B"] == m.equilibrium["force_B"]
+    assert m.frequency[0] > 1.5 * vibrissa.modes(whisker(), 1).frequency[0]
+    slip = vibrissa.modes(whisker(), 4, load=load, hold="slip")
+    assert slip.equilibrium["constraints"] == 1 and slip.frequency[0] < m.frequency[0]
+    with pytest.raises(ValueError, match="hold"):
+        vibrissa.modes(whisker(), 4, load={"mode": "dead_load", "force": [0, 1e-5, 0], "arc_length": 0.02},
+                       hold="stick")
+
+
+def test_array_dynamics_in_air():
+    # simulate_array(dynamics=True) = `vibrissa array --dynamics`: every whisker whisks in air through the
+    # integrator; the base signals are inertial (nonzero), nothing touches, the tip displacement is added.
+    cfg = json.loads(vibrissa._vibrissa.default_array_config_json())
+    cfg["time"] = {"start_s": 0.0, "end_s": 0.0625, "frames": 126}
+    cfg["morphology"]["whiskers"] = ["C1", "D2"]
+    cfg["solver"]["links"] = 40
+    cfg["output"]["render_count"] = 0
+    r = vibrissa.simulate_array(cfg, dynamics=True)
+    assert r.summary["dynamics"]["in_air"] and r.summary["dynamics"]["steps"] > 0
+    assert r.tip_displacement_B.shape == (1, 2, 126, 3)
+    assert (r.state == 0).all() and r.MB.max() > 1e-9
+    quasi = vibrissa.simulate_array(cfg)
+    np.testing.assert_allclose(r.base_W, quasi.base_W, atol=1e-12)

@@ -28,14 +28,22 @@ def _settings(density, damping_ratio, joint_damping_time, gravity, **rest):
     return json.dumps(out)
 
 
-def modes(whisker, count=10, *, density=None, damping_ratio=None, joint_damping_time=None):
-    """The ``count`` lowest natural modes of ``whisker`` about its rest shape (second-order scheme):
-    ``frequency`` and ``damped_frequency`` [Hz], ``damping_ratio``, ``torsion_fraction`` (NumPy arrays, one
-    value per mode), ``joint_shapes`` (3N, modes) and ``node_shapes`` (modes, N+1, 3; node displacements in
-    the whisker frame, largest 1). Defaults: density 1300 kg/m³, first-mode damping ratio 0.14
-    (Hartmann et al. 2003); ``joint_damping_time`` [s] sets the joint dampers instead (ζ_n = β ω_n / 2)."""
-    m = _modes(whisker, _settings(density, damping_ratio, joint_damping_time, None), int(count))
-    return _ModesView(m, whisker.links)
+def modes(whisker, count=10, *, load=None, hold=None, density=None, damping_ratio=None,
+          joint_damping_time=None):
+    """The ``count`` lowest natural modes of ``whisker`` (second-order scheme) about its rest shape, or with
+    ``load`` (a dict as the ``"load"`` of ``vibrissa solve``: force, dead_load, point, edge, frictional_edge,
+    object) about its equilibrium under that load; ``hold`` ("stick" or "slip") overrides how a contact holds
+    (docs/dynamics.md). Returns ``frequency`` and ``damped_frequency`` [Hz], ``damping_ratio``,
+    ``torsion_fraction`` (NumPy arrays, one value per mode), ``joint_shapes`` (3N, modes), ``node_shapes``
+    (modes, N+1, 3; node displacements in the whisker frame, largest 1) and ``equilibrium`` (a dict: the held
+    load, constraints, Newton's residual; None about rest). Defaults: density 1300 kg/m³, first-mode damping
+    ratio 0.14 (Hartmann et al. 2003); ``joint_damping_time`` [s] sets the joint dampers instead
+    (ζ_n = β ω_n / 2 about rest)."""
+    m, eq = _modes(whisker, _settings(density, damping_ratio, joint_damping_time, None, load=load,
+                                      hold=hold), int(count))
+    view = _ModesView(m, whisker.links)
+    view.equilibrium = json.loads(eq) if eq else None
+    return view
 
 
 class _ModesView:
@@ -49,6 +57,7 @@ class _ModesView:
         self.joint_shapes = m.joint_shapes
         self.joint_damping_time = m.joint_damping_time
         self.node_shapes = m.node_shapes_flat.T.reshape(len(m), links + 1, 3)
+        self.equilibrium = None
 
     def __len__(self):
         return len(self._m)

@@ -15,6 +15,7 @@ class _ModesView:
     joint_shapes: npt.NDArray[np.float64]
     node_shapes: npt.NDArray[np.float64]
     joint_damping_time: float
+    equilibrium: Optional[Dict[str, Any]]
     def __len__(self) -> int: ...
 
 class DynamicsResult:
@@ -27,7 +28,8 @@ class DynamicsResult:
     def to_xarray(self) -> Any: ...
     def write(self, directory: Union[str, PathLike]) -> None: ...
 
-def modes(whisker: Whisker, count: int = 10, *, density: Optional[float] = None,
+def modes(whisker: Whisker, count: int = 10, *, load: Optional[Mapping[str, Any]] = None,
+          hold: Optional[str] = None, density: Optional[float] = None,
           damping_ratio: Optional[float] = None, joint_damping_time: Optional[float] = None) -> _ModesView: ...
 def simulate_dynamics(whisker: Whisker, duration: float = 1.0, output_rate: float = 1000.0, *,
                       whisking: Optional[Mapping[str, Any]] = None, tip_force: Optional[Sequence[float]] = None,

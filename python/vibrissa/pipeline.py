@@ -241,8 +241,10 @@ class ArrayResult(_NamedArrays):
         return view(self, path)
 
 
-def simulate_array(config=None, progress=None, threads=None):
-    """Simulates a whisker array exactly as ``vibrissa array`` does.
+def simulate_array(config=None, progress=None, threads=None, dynamics=False):
+    """Simulates a whisker array exactly as ``vibrissa array`` does (``dynamics=True``: as ``vibrissa array
+    --dynamics``, every whisker through the dynamics integrator, in air; the config's ``"dynamics"`` object sets
+    density, damping and air drag; docs/dynamics.md).
 
     `config` is a dict (same schema as the JSON file, docs/array.md), a path to a JSON file, or None for the
     built-in default. ``threads`` overrides the config's ``threads`` (like ``--threads``).
@@ -256,7 +258,7 @@ def simulate_array(config=None, progress=None, threads=None):
         text, path = json.dumps(config, default=_json_default), None
     else:
         raise TypeError(f"config must be a dict, a path or None, got {type(config).__name__}")
-    return ArrayResult(_vibrissa._simulate_array(text, path, threads, progress))
+    return ArrayResult(_vibrissa._simulate_array(text, path, threads, progress, bool(dynamics)))
 
 
 def _json_default(value):

@@ -53,6 +53,6 @@ class ArrayResult:
     def view(self, path: PathLike = "array_view.html") -> pathlib.Path: ...  # docs/viewer.md
 
 def simulate_array(config: Union[dict[str, Any], PathLike, None] = None, progress: Progress = None,
-                   threads: Optional[int] = None) -> ArrayResult: ...
+                   threads: Optional[int] = None, dynamics: bool = False) -> ArrayResult: ...
 
 __all__: list[str]

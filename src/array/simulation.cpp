@@ -13,6 +13,8 @@
 #include "vibrissa/contact/tracker.hpp"
 #include "vibrissa/array/error_bound.hpp"
 #include "vibrissa/solve/solvers.hpp"
+#include "vibrissa/dynamics/air_drag.hpp"
+#include "vibrissa/dynamics/simulate.hpp"
 
 namespace vibrissa::array {
 namespace {
@@ -126,6 +128,64 @@ class PairRun {
   ContactTracker tracker_;
 };
 
+// The run of one whisker at one head pitch through the dynamics integrator (in air): its base follows the head and
+// whisking kinematics; frames are the integrator's outputs at the config's (equally spaced) times.
+void run_dynamics(const SimulationConfig& c, const Prepared& prep, ArrayResult& r, std::size_t p, std::size_t w,
+                  std::size_t& steps, std::size_t& rejected) {
+  const WhiskerSpec& spec = c.morphology.whiskers[w];
+  const Whisker& rest = prep.rest[w];
+  const double t0 = c.times.front(), pitch = c.pitches[p];
+  auto placement = [&c, &spec, t0, pitch](double t) {
+    const HeadPose H = c.head.at(t0 + t, pitch);
+    const WhiskerAngles a = angles_at(spec, c.whisking, t0 + t);
+    return Placement(H.R_WH * R_HB(spec.side, a.theta, a.phi, a.zeta), H.point_to_world(spec.p_H_base));
+  };
+  const dynamics::BaseTrajectory base = dynamics::trajectory_from_placements(placement);
+  const dynamics::DynamicsProperties& props = *c.dynamics;
+  dynamics::SimulationOptions o;
+  o.output_rate = static_cast<double>(c.times.size() - 1) / (c.times.back() - t0);
+  o.duration = c.times.back() - t0;
+  const bool render_run = p == static_cast<std::size_t>(c.render_pitch);
+  o.record_nodes = render_run && !c.render_frames.empty();
+  const dynamics::LinearModel model = dynamics::linear_model(rest, props);
+  const dynamics::Modes all = dynamics::modes(model, rest);
+  const dynamics::TimeSeries ts = dynamics::simulate(
+      rest, model, all, base, props.gravity_W, o, {},
+      props.air_drag ? dynamics::air_drag_load(rest, base, props.air) : dynamics::ExternalLoad{});
+  if (ts.status != dynamics::SimulationStatus::completed || ts.time.size() != r.n_frames)
+    throw std::runtime_error("dynamics of whisker " + spec.label() + " stopped early: " +
+                             std::string(dynamics::to_string(ts.status)));
+  steps += static_cast<std::size_t>(ts.steps);
+  rejected += static_cast<std::size_t>(ts.rejected_steps);
+  for (std::size_t f = 0; f < r.n_frames; ++f) {
+    const std::size_t k = r.index(p, w, f);
+    put3(r.base_W, k, ts.placements[f].p_W_base);
+    const Eigen::Vector3d& F = ts.force_B[f];
+    const Eigen::Vector3d& M = ts.moment_B[f];
+    put3(r.force_B, k, F);
+    put3(r.moment_B, k, M);
+    put3(r.force_W, k, ts.force_W[f]);
+    put3(r.moment_W, k, ts.moment_W[f]);
+    put3(r.tip_displacement_B, k, ts.tip_displacement_B[f]);
+    r.FT[k] = std::hypot(F.y(), F.z());
+    r.MB[k] = std::hypot(M.y(), M.z());
+    r.FD[k] = std::atan2(F.z(), F.y());
+    r.MD[k] = std::atan2(M.z(), M.y());
+    if (render_run && prep.render_index[f] >= 0) {
+      const std::size_t ri = static_cast<std::size_t>(prep.render_index[f]);
+      const auto& nodes_B = rest.rest_nodes_B();
+      for (std::size_t i = 0; i < nodes_B.size(); ++i) {
+        const std::size_t at = ((ri * r.n_whiskers + w) * nodes_B.size() + i) * 3;
+        const Eigen::Vector3d x_rest = ts.placements[f].to_world(nodes_B[i]);
+        for (int a = 0; a < 3; ++a) {
+          r.rest_shapes[at + static_cast<std::size_t>(a)] = static_cast<float>(x_rest[a]);
+          r.deflected_shapes[at + static_cast<std::size_t>(a)] = static_cast<float>(ts.nodes_W[f][i][a]);
+        }
+      }
+    }
+  }
+}
+
 Prepared prepare(const SimulationConfig& c, ArrayResult& r) {
   Prepared prep;
   const std::size_t W = c.morphology.whiskers.size(), F = c.times.size(), P = c.pitches.size();
@@ -192,6 +252,14 @@ void validate(const SimulationConfig& c) {
   for (std::size_t i = 0; i < c.times.size(); ++i) {
     if (!std::isfinite(c.times[i])) fail("time[" + std::to_string(i) + "] must be finite");
     if (i > 0 && !(c.times[i] > c.times[i - 1])) fail("time must increase strictly at frame " + std::to_string(i));
+  }
+  if (c.dynamics) {
+    dynamics::validate(*c.dynamics);
+    const double dt = (c.times.back() - c.times.front()) / static_cast<double>(c.times.size() - 1);
+    for (std::size_t i = 1; i < c.times.size(); ++i)
+      if (std::abs(c.times[i] - c.times.front() - dt * static_cast<double>(i)) > 1e-9 * (c.times.back() - c.times.front()))
+        fail("time: dynamics needs equally spaced frames (the integrator's output rate), frame " + std::to_string(i) +
+             " is at " + fmt(c.times[i]) + " s");
   }
   if (c.mode == ContactMode::contact_point)
     fail("solver.mode must be 'edge' or 'frictional_edge' (an array has no tracked contact points), got 'contact_point'");
@@ -268,16 +336,22 @@ ArrayResult simulate_array(const SimulationConfig& c, const RunControl& control)
 
   const long pairs = static_cast<long>(r.n_pitches * r.n_whiskers);
   ProgressCounter counter(control, total);
-  std::size_t solves = 0, failed = 0;
+  std::size_t solves = 0, failed = 0, steps = 0, rejected = 0;
+  if (c.dynamics) r.tip_displacement_B.assign(3 * total, 0.0);
   std::exception_ptr error;
   std::mutex error_mutex;
   const int threads = c.threads > 0 ? c.threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) reduction(+ : solves, failed)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) reduction(+ : solves, failed, steps, rejected)
   for (long pair = 0; pair < pairs; ++pair) {
     try {
       counter.check();
       const std::size_t pi = static_cast<std::size_t>(pair) / r.n_whiskers;
       const std::size_t wi = static_cast<std::size_t>(pair) % r.n_whiskers;
+      if (c.dynamics) {
+        run_dynamics(c, prep, r, pi, wi, steps, rejected);
+        counter.advance(r.n_frames);
+        continue;
+      }
       PairRun run(c, prep, r, pi, wi);
       run.run();
       solves += run.solves();
@@ -291,6 +365,8 @@ ArrayResult simulate_array(const SimulationConfig& c, const RunControl& control)
   if (error) std::rethrow_exception(error);
   r.solves = solves;
   r.failed_solves = failed;
+  r.dynamics_steps = steps;
+  r.dynamics_rejected_steps = rejected;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

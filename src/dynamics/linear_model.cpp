@@ -59,6 +59,12 @@ void validate(const DynamicsProperties& p) {
   if (p.joint_damping_time && !(std::isfinite(*p.joint_damping_time) && *p.joint_damping_time >= 0.0))
     throw std::invalid_argument("dynamics.joint_damping_time must be >= 0 and finite [s], got " +
                                 format_value(*p.joint_damping_time));
+  if (!(std::isfinite(p.air.density) && p.air.density > 0.0))
+    throw std::invalid_argument("dynamics.air_density must be positive and finite [kg/m^3], got " +
+                                format_value(p.air.density));
+  if (!(std::isfinite(p.air.kinematic_viscosity) && p.air.kinematic_viscosity > 0.0))
+    throw std::invalid_argument("dynamics.air_kinematic_viscosity must be positive and finite [m^2/s], got " +
+                                format_value(p.air.kinematic_viscosity));
   if (!p.gravity_W.allFinite())
     throw std::invalid_argument("dynamics.gravity must be finite [m/s^2], got " + format_value(p.gravity_W));
 }
@@ -101,6 +107,30 @@ Eigen::Matrix<double, base_input_size, 1> base_input(const BaseMotion& m, const 
   return u;
 }
 
+Eigen::MatrixXd chain_mass_matrix(const std::vector<LinkInertia>& links, const std::vector<Eigen::Vector3d>& p) {
+  // Tail sums over links i >= k (j <= k): sum_i m_i skew(c_i - p_j)^T skew(c_i - p_k) + I_i
+  // = tr(X) 1 - X + sum I_i with X = sum_i m_i (c_i - p_k)(c_i - p_j)^T.
+  const std::size_t N = links.size();
+  Eigen::MatrixXd mass = Eigen::MatrixXd::Zero(at(N), at(N));
+  double S0 = 0.0;
+  Eigen::Vector3d S1 = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d T = Eigen::Matrix3d::Zero(), Itail = Eigen::Matrix3d::Zero();
+  for (std::size_t k = N; k-- > 0;) {
+    const LinkInertia& L = links[k];
+    S0 += L.mass;
+    S1 += L.mass * L.centroid_B;
+    T += L.mass * L.centroid_B * L.centroid_B.transpose();
+    Itail += L.inertia_B;
+    for (std::size_t j = 0; j <= k; ++j) {
+      const Eigen::Matrix3d X = T - S1 * p[j].transpose() - p[k] * S1.transpose() + S0 * p[k] * p[j].transpose();
+      const Eigen::Matrix3d B = X.trace() * Eigen::Matrix3d::Identity() - X + Itail;
+      mass.block<3, 3>(at(j), at(k)) = B;
+      if (j != k) mass.block<3, 3>(at(k), at(j)) = B.transpose();
+    }
+  }
+  return 0.5 * (mass + mass.transpose());
+}
+
 LinearModel linear_model(const Whisker& w, const DynamicsProperties& props) {
   validate(props);
   if (w.properties().scheme != Scheme::second_order)
@@ -129,28 +159,7 @@ LinearModel linear_model(const Whisker& w, const DynamicsProperties& props) {
     model.stiffness.block<3, 3>(at(j), at(j)) = 0.5 * (K + K.transpose());
   }
 
-  // Mass matrix from tail sums over links i >= k (j <= k): sum_i m_i skew(c_i - p_j)^T skew(c_i - p_k) + I_i
-  // = tr(X) 1 - X + sum I_i with X = sum_i m_i (c_i - p_k)(c_i - p_j)^T.
-  model.mass = Eigen::MatrixXd::Zero(n, n);
-  {
-    double S0 = 0.0;
-    Eigen::Vector3d S1 = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d T = Eigen::Matrix3d::Zero(), Itail = Eigen::Matrix3d::Zero();
-    for (std::size_t k = N; k-- > 0;) {
-      const LinkInertia& L = links[k];
-      S0 += L.mass;
-      S1 += L.mass * L.centroid_B;
-      T += L.mass * L.centroid_B * L.centroid_B.transpose();
-      Itail += L.inertia_B;
-      for (std::size_t j = 0; j <= k; ++j) {
-        const Eigen::Matrix3d X = T - S1 * p[j].transpose() - p[k] * S1.transpose() + S0 * p[k] * p[j].transpose();
-        const Eigen::Matrix3d B = X.trace() * Eigen::Matrix3d::Identity() - X + Itail;
-        model.mass.block<3, 3>(at(j), at(k)) = B;
-        if (j != k) model.mass.block<3, 3>(at(k), at(j)) = B.transpose();
-      }
-    }
-    model.mass = 0.5 * (model.mass + model.mass.transpose()).eval();
-  }
+  model.mass = chain_mass_matrix(links, p);
 
   // Base motion: generalised forces and the follicle's wrench for each unit input.
   model.input.resize(n, base_input_size);

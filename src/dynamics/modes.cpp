@@ -10,6 +10,24 @@
 
 namespace vibrissa::dynamics {
 
+namespace detail {
+void orient_and_scale_shapes(Modes& out) {
+  const Eigen::Index nodes = out.node_shapes.rows() / 3;
+  for (Eigen::Index i = 0; i < out.node_shapes.cols(); ++i) {
+    // Fix the sign: the largest node displacement component positive.
+    Eigen::Index big = 0;
+    out.node_shapes.col(i).cwiseAbs().maxCoeff(&big);
+    if (out.node_shapes(big, i) < 0.0) {
+      out.node_shapes.col(i) *= -1.0;
+      out.joint_shapes.col(i) *= -1.0;
+    }
+    double largest = 0.0;
+    for (Eigen::Index k = 0; k < nodes; ++k) largest = std::max(largest, out.node_shapes.col(i).segment<3>(3 * k).norm());
+    if (largest > 0.0) out.node_shapes.col(i) /= largest;
+  }
+}
+}  // namespace detail
+
 Modes modes(const LinearModel& model, const Whisker& w, int count) {
   const int n = model.size();
   const int m = count <= 0 ? n : std::min(count, n);
@@ -28,20 +46,10 @@ Modes modes(const LinearModel& model, const Whisker& w, int count) {
   }
   out.joint_shapes = eig.eigenvectors().leftCols(m);  // v^T M v = 1 (Eigen's normalisation for A x = l B x)
   out.node_shapes = model.node_displacement * out.joint_shapes;
+  detail::orient_and_scale_shapes(out);
   out.torsion_fraction.resize(m);
   const std::size_t N = static_cast<std::size_t>(w.links());
   for (int i = 0; i < m; ++i) {
-    // Fix the sign: the largest node displacement component positive.
-    Eigen::Index big = 0;
-    out.node_shapes.col(i).cwiseAbs().maxCoeff(&big);
-    if (out.node_shapes(big, i) < 0.0) {
-      out.node_shapes.col(i) *= -1.0;
-      out.joint_shapes.col(i) *= -1.0;
-    }
-    double largest = 0.0;
-    for (std::size_t k = 0; k <= N; ++k)
-      largest = std::max(largest, out.node_shapes.col(i).segment<3>(static_cast<Eigen::Index>(3 * k)).norm());
-    if (largest > 0.0) out.node_shapes.col(i) /= largest;
     // Twist energy: with the joint moment m = K theta, (t . m)^2 w / (G J) / 2 about the joint's mid tangent t.
     double twist = 0.0;
     for (std::size_t j = 0; j < N; ++j) {

@@ -11,6 +11,7 @@
 #include "vibrissa/core/checks.hpp"
 #include "vibrissa/core/limits.hpp"
 #include "nonlinear_simulate.hpp"
+#include "vibrissa/dynamics/air_drag.hpp"
 
 namespace vibrissa::dynamics {
 namespace {
@@ -100,13 +101,17 @@ void validate(const SimulationOptions& o) {
 }
 
 TimeSeries simulate(const Whisker& w, const LinearModel& model, const Modes& modes, const BaseTrajectory& base,
-                    const Eigen::Vector3d& gravity_W, const SimulationOptions& opt, const InitialState& initial) {
+                    const Eigen::Vector3d& gravity_W, const SimulationOptions& opt, const InitialState& initial,
+                    const ExternalLoad& external) {
   validate(opt);
   const bool nonlinear =
       opt.model == ChainModel::nonlinear || (opt.model == ChainModel::automatic && !opt.objects.empty());
   if (!nonlinear && !opt.objects.empty())
     throw std::invalid_argument("model \"linear\" cannot touch objects (" + std::to_string(opt.objects.size()) +
                                 " given): use \"nonlinear\" or \"automatic\"");
+  if (nonlinear && external)
+    throw std::invalid_argument("air drag (an external load) acts in the linear model only, not yet in the nonlinear "
+                                "chain with objects: set dynamics.air_drag false or model \"linear\"");
   if (nonlinear) return detail::simulate_nonlinear(w, model, modes, base, gravity_W, opt, initial);
   const Eigen::Index n = model.size(), m = modes.count();
   if (m != n)
@@ -117,7 +122,16 @@ TimeSeries simulate(const Whisker& w, const LinearModel& model, const Modes& mod
   const Eigen::VectorXd c = 2.0 * modes.damping_ratio.cwiseProduct(modes.omega);
   const Eigen::MatrixXd P = Phi.transpose() * model.input;  // modal force per unit input
   const Eigen::MatrixXd Mphi = model.mass * Phi;          // eta = Phi^T M q
-  auto modal_force = [&](double t) -> Eigen::VectorXd { return P * base_input(base(t), gravity_W); };
+  auto modal_force = [&](double t) -> Eigen::VectorXd {
+    Eigen::VectorXd p = P * base_input(base(t), gravity_W);
+    if (external) {
+      Eigen::VectorXd Q = Eigen::VectorXd::Zero(n);
+      Eigen::Matrix<double, 6, 1> unused = Eigen::Matrix<double, 6, 1>::Zero();
+      external(t, Q, unused);
+      p.noalias() += Phi.transpose() * Q;
+    }
+    return p;
+  };
 
   State y{Eigen::VectorXd::Zero(m), Eigen::VectorXd::Zero(m)};
   if (initial.q.size() != 0) {
@@ -160,8 +174,11 @@ TimeSeries simulate(const Whisker& w, const LinearModel& model, const Modes& mod
     const BaseMotion b = base(t);
     const Input u = base_input(b, gravity_W);
     const Eigen::VectorXd acc = p - c.cwiseProduct(s.rate) - k.cwiseProduct(s.eta);
-    const Eigen::Matrix<double, 6, 1> wrench =
-        model.base_from_input * u + model.base_from_acceleration * (Phi * acc);
+    Eigen::Matrix<double, 6, 1> wrench = model.base_from_input * u + model.base_from_acceleration * (Phi * acc);
+    if (external) {
+      Eigen::VectorXd unused = Eigen::VectorXd::Zero(n);
+      external(t, unused, wrench);
+    }
     ts.time.push_back(t);
     ts.force_B.push_back(wrench.head<3>());
     ts.moment_B.push_back(wrench.tail<3>());
@@ -234,7 +251,8 @@ TimeSeries simulate(const Whisker& w, const DynamicsProperties& props, const Bas
                     const SimulationOptions& options, const InitialState& initial) {
   const LinearModel model = linear_model(w, props);
   const Modes all = modes(model, w);
-  return simulate(w, model, all, base, props.gravity_W, options, initial);
+  return simulate(w, model, all, base, props.gravity_W, options, initial,
+                  props.air_drag ? air_drag_load(w, base, props.air) : ExternalLoad{});
 }
 
 }  // namespace vibrissa::dynamics

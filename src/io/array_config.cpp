@@ -1,4 +1,5 @@
 #include "vibrissa/io/array_config.hpp"
+#include "vibrissa/io/dynamics_case.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -157,8 +158,10 @@ SimulationConfig load_array_config(const std::filesystem::path& path) {
 
 SimulationConfig array_config_from_json(const json& input, const std::filesystem::path& base_dir) {
   const json j = io::resolve_input_paths(input, base_dir);  // files named relative to base_dir (json_input.hpp)
-  only_keys(j, "", {"morphology", "whisking", "time", "head", "objects", "solver", "output", "threads", "comment"});
+  only_keys(j, "", {"morphology", "whisking", "time", "head", "objects", "solver", "output", "threads", "comment",
+                    "dynamics"});
   SimulationConfig c;
+  if (j.contains("dynamics")) c.dynamics = dynamics_properties_from_json(j.at("dynamics"));
 
   // --- morphology ---
   const json m = j.value("morphology", json::object());

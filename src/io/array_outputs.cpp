@@ -160,6 +160,9 @@ LabelledData array_data(const ArrayResult& r, const SimulationConfig& c) {
   per_frame("z_edge", r.z_edge, "m", "contact position along the edge from its point");
   per_frame("z_error", r.z_error, "m", "eq. (7) bound on the contact height error of edge mode, for mu");
   vector_per_frame("base_W", r.base_W, "m", "whisker base point, world frame");
+  if (!r.tip_displacement_B.empty())  // `vibrissa array --dynamics`: the base signals above are the dynamics'
+    vector_per_frame("tip_displacement_B", r.tip_displacement_B, "m",
+                     "dynamics: tip displacement from its rest position, whisker frame");
   for (const auto& [name, values, what] :
        {std::tuple{"theta", &r.theta, "protraction angle theta"}, std::tuple{"phi", &r.phi, "elevation angle phi"},
         std::tuple{"zeta", &r.zeta, "roll angle zeta"}})
@@ -272,6 +275,17 @@ nlohmann::json array_summary_json(const ArrayResult& r, const SimulationConfig& 
   j["solves"] = r.solves;
   j["failed_solves"] = r.failed_solves;
   j["simulation_seconds"] = r.wall_seconds;
+  if (c.dynamics) {
+    // `vibrissa array --dynamics` (docs/array.md): in air; the base signals are inertial (and drag), not contact.
+    const dynamics::DynamicsProperties& d = *c.dynamics;
+    j["dynamics"] = {{"in_air", true},
+                     {"objects_touched", false},
+                     {"density", d.density},
+                     {"damping_ratio", d.damping_ratio},
+                     {"air_drag", d.air_drag},
+                     {"steps", r.dynamics_steps},
+                     {"rejected_steps", r.dynamics_rejected_steps}};
+  }
   j["warnings"] = array_warnings(r);
   j["per_pitch"] = nlohmann::json::array();
   for (const PitchSummary& s : summarize_pitches(r)) {

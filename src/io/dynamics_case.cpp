@@ -9,7 +9,9 @@
 #include <string>
 
 #include "csv_cells.hpp"
+#include "vibrissa/core/chain.hpp"
 #include "vibrissa/core/checks.hpp"
+#include "vibrissa/dynamics/air_drag.hpp"
 #include "vibrissa/io/array_config.hpp"
 #include "vibrissa/io/atomic_file.hpp"
 #include "vibrissa/io/case_json.hpp"
@@ -44,6 +46,28 @@ dynamics::BaseTrajectory whisking_trajectory(const Pose& pose, const Whisking& w
   });
 }
 
+dynamics::DynamicsProperties dynamics_properties_from_json(const json& d) {
+  dynamics::DynamicsProperties props;
+  only_keys(d, "dynamics", {"density", "damping_ratio", "joint_damping_time", "gravity", "air_drag", "air_density",
+                            "air_kinematic_viscosity"});
+  if (d.contains("air_drag")) {
+    if (!d.at("air_drag").is_boolean()) fail("dynamics.air_drag must be true or false, got " + describe(d.at("air_drag")));
+    props.air_drag = d.at("air_drag").get<bool>();
+  }
+  props.air.density = number_or(d, "air_density", "dynamics", props.air.density);
+  props.air.kinematic_viscosity =
+      number_or(d, "air_kinematic_viscosity", "dynamics", props.air.kinematic_viscosity);
+  props.density = number_or(d, "density", "dynamics", props.density);
+  if (d.contains("damping_ratio") && d.contains("joint_damping_time"))
+    fail("dynamics needs at most one of \"damping_ratio\" and \"joint_damping_time\"");
+  props.damping_ratio = number_or(d, "damping_ratio", "dynamics", props.damping_ratio);
+  if (d.contains("joint_damping_time"))
+    props.joint_damping_time = json_number(d.at("joint_damping_time"), "dynamics.joint_damping_time");
+  if (d.contains("gravity")) props.gravity_W = json_vec3(d.at("gravity"), "dynamics.gravity");
+  dynamics::validate(props);
+  return props;
+}
+
 DynamicsCase dynamics_case_from_json(const json& j) {
   if (!j.is_object()) fail("the case must be a JSON object, got " + describe(j));
   if (!j.contains("whisker")) fail("the case needs a \"whisker\" object");
@@ -52,19 +76,9 @@ DynamicsCase dynamics_case_from_json(const json& j) {
 
 DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
   only_keys(j, "", {"whisker", "dynamics", "whisking", "initial", "duration", "output_rate", "relative_tolerance",
-                    "absolute_tolerance", "modes", "model", "objects", "contact"});
+                    "absolute_tolerance", "modes", "model", "objects", "contact", "load", "hold"});
   DynamicsCase c(whisker);
-  if (j.contains("dynamics")) {
-    const json& d = j.at("dynamics");
-    only_keys(d, "dynamics", {"density", "damping_ratio", "joint_damping_time", "gravity"});
-    c.properties.density = number_or(d, "density", "dynamics", c.properties.density);
-    if (d.contains("damping_ratio") && d.contains("joint_damping_time"))
-      fail("dynamics needs at most one of \"damping_ratio\" and \"joint_damping_time\"");
-    c.properties.damping_ratio = number_or(d, "damping_ratio", "dynamics", c.properties.damping_ratio);
-    if (d.contains("joint_damping_time"))
-      c.properties.joint_damping_time = json_number(d.at("joint_damping_time"), "dynamics.joint_damping_time");
-    if (d.contains("gravity")) c.properties.gravity_W = json_vec3(d.at("gravity"), "dynamics.gravity");
-  }
+  if (j.contains("dynamics")) c.properties = dynamics_properties_from_json(j.at("dynamics"));
   dynamics::validate(c.properties);
   if (j.contains("whisking")) {
     const json& w = j.at("whisking");
@@ -147,6 +161,19 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
   c.options.absolute_tolerance = number_or(j, "absolute_tolerance", "", c.options.absolute_tolerance);
   dynamics::validate(c.options);
   if (j.contains("modes")) c.mode_count = json_integer(j.at("modes"), "modes", 1, 100000);
+  if (j.contains("load")) {
+    c.load = load_from_json(j.at("load"));
+    if (std::holds_alternative<BaseWrenchLoad>(*c.load))
+      fail("load.mode \"base_wrench\" has no load to hold for modes: use force, dead_load, point, edge, "
+           "frictional_edge or object");
+  }
+  if (j.contains("hold")) {
+    if (!c.load) fail("\"hold\" needs a \"load\"");
+    const std::string m = json_string(j.at("hold"), "hold");
+    if (m == "stick") c.hold = dynamics::ContactModel::stick;
+    else if (m == "slip") c.hold = dynamics::ContactModel::slip;
+    else fail("hold must be \"stick\" or \"slip\", got " + quote_text(m));
+  }
   return c;
 }
 
@@ -154,6 +181,11 @@ dynamics::BaseTrajectory base_trajectory(const DynamicsCase& c) {
   const Pose pose = c.whisker.placement().pose();
   if (c.whisking) return whisking_trajectory(pose, *c.whisking);
   return dynamics::fixed_base(c.whisker.placement());
+}
+
+dynamics::ExternalLoad external_load(const DynamicsCase& c) {
+  if (!c.properties.air_drag) return {};
+  return dynamics::air_drag_load(c.whisker, base_trajectory(c), c.properties.air);
 }
 
 dynamics::InitialState initial_state(const DynamicsCase& c, const dynamics::LinearModel& model) {
@@ -175,6 +207,92 @@ dynamics::InitialState initial_state(const DynamicsCase& c, const dynamics::Line
     s.q_dot = Eigen::VectorXd::Zero(s.q.size());
   }
   return s;
+}
+
+CaseModes case_modes(const DynamicsCase& c, int count) {
+  CaseModes out;
+  const Whisker& w = c.whisker;
+  if (!c.load) {
+    out.modes = dynamics::modes(w, c.properties, count);
+    return out;
+  }
+  const Case sc{w, *c.load, SolveOptions{}, {}};
+  out.solution = solve_case(sc);
+  const Solution& sol = out.solution;
+  if (sol.status != Status::converged || sol.contact_state != ContactState::contact)
+    throw std::runtime_error("the load's quasi-static solve gave status " + std::string(to_string(sol.status)) +
+                             ", contact " + std::string(to_string(sol.contact_state)) +
+                             ": no equilibrium to take modes about");
+  const Eigen::Matrix3d R_BW = w.placement().R_WB.transpose();
+  dynamics::HeldLoad& h = out.held;
+  h.arc_length = sol.arc_length;
+  h.force_B = R_BW * sol.force_W;
+  h.contact_point_B = R_BW * (sol.contact_point_W - w.placement().p_W_base);
+  // How each load holds (docs/dynamics.md): forces keep their force; a point contact sticks; an edge or
+  // object contact slips unless the frictional solve stuck; "hold" overrides.
+  std::optional<Eigen::Vector3d> normal_W;
+  std::visit(
+      [&](const auto& l) {
+        using T = std::decay_t<decltype(l)>;
+        if constexpr (std::is_same_v<T, ForceLoad>) {
+          h.follower = true;
+        } else if constexpr (std::is_same_v<T, DeadLoad>) {
+          h.follower = false;
+        } else if constexpr (std::is_same_v<T, PointLoad>) {
+          h.contact = dynamics::ContactModel::stick;
+          normal_W = sol.force_W;
+        } else if constexpr (std::is_same_v<T, EdgeLoad> || std::is_same_v<T, FrictionalEdgeLoad>) {
+          h.contact = sol.friction == FrictionState::stick ? dynamics::ContactModel::stick : dynamics::ContactModel::slip;
+          const Eigen::Vector3d e = l.edge.direction.normalized();
+          normal_W = sol.force_W - sol.force_W.dot(e) * e;  // the edge's normal force
+        } else if constexpr (std::is_same_v<T, ObjectLoad>) {
+          h.contact = sol.friction == FrictionState::stick ? dynamics::ContactModel::stick : dynamics::ContactModel::slip;
+          normal_W = sol.surface ? sol.surface->normal_W : sol.force_W;
+        }
+      },
+      *c.load);
+  if (c.hold) {
+    if (h.contact == dynamics::ContactModel::none)
+      throw std::invalid_argument("\"hold\" applies to contact loads (point, edge, frictional_edge, object), "
+                                  "not to a force");
+    h.contact = *c.hold;
+  }
+  if (normal_W) {
+    if (!(normal_W->norm() > 0.0)) throw std::runtime_error("the contact force is zero: no contact normal for modes");
+    h.normal_B = R_BW * normal_W->normalized();
+  }
+  // Start Newton from the quasi-static solve's joint rotations (rest axes).
+  const std::size_t N = static_cast<std::size_t>(w.links());
+  std::vector<Eigen::Vector3d> omega_link(N, Eigen::Vector3d::Zero());
+  const LoadState& st = sol.state;
+  deflect<double>(w, V3<double>(st.force_x, st.force_y, st.force_z), V3<double>(st.couple_x, st.couple_y, st.couple_z),
+                  st.arc_length, omega_link.data());
+  dynamics::JointRotations start(N);
+  for (std::size_t j = 0; j < N; ++j) start[j] = w.rest_link_frames_B()[j] * omega_link[j];
+  out.deflected = dynamics::deflected_modes(w, c.properties, h, start, count);
+  out.modes = out.deflected->modes;
+  return out;
+}
+
+json equilibrium_to_json(const CaseModes& m, const Whisker& w) {
+  if (!m.deflected) return nullptr;
+  const dynamics::DeflectedModes& d = *m.deflected;
+  const auto vec = [](const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); };
+  json j;
+  j["arc_length"] = m.held.arc_length;
+  j["load"] = m.held.contact == dynamics::ContactModel::none ? (m.held.follower ? "follower" : "dead") : "contact";
+  j["contact"] = std::string(dynamics::to_string(m.held.contact));
+  if (m.held.contact == dynamics::ContactModel::slip) j["normal_B"] = vec(m.held.normal_B);
+  j["constraints"] = d.constraints;
+  j["force_B"] = vec(d.equilibrium.force_B);
+  j["contact_point_B"] = vec(d.equilibrium.contact_B);
+  j["quasi_static_force_B"] = vec(w.placement().R_WB.transpose() * m.solution.force_W);
+  j["tip_B"] = vec(dynamics::chain_nodes_B(w, d.equilibrium.omega).back());
+  j["newton_iterations"] = d.equilibrium.iterations;
+  j["relative_residual"] = d.equilibrium.residual;
+  j["stiffness_asymmetry"] = d.asymmetry;
+  j["largest_imaginary"] = d.largest_imaginary;
+  return j;
 }
 
 json modes_to_json(const dynamics::Modes& m, const Whisker& w, const DynamicsCase& c) {

@@ -285,3 +285,35 @@ TEST(ArrayConfig, PhiMethodSelectsTheTowalElevation) {
   EXPECT_GT(std::abs(projection - euler), 0.01);
   EXPECT_NEAR(euler, (-15.8761 * 5 + 47.3263) * std::numbers::pi / 180.0, 1e-12);  // Euler-φ regression, ROW 5
 }
+
+// `vibrissa array --dynamics` (docs/dynamics.md): the bases follow the array's kinematics exactly as in the
+// quasi-static run (time offset and head pitch included), a whisking whisker carries inertial base signals, a
+// still one none, and the config's "dynamics" is checked.
+TEST(ArrayDynamics, BasesFollowTheArrayKinematicsAndStillWhiskersCarryNothing) {
+  json j = base_config();
+  j["morphology"]["whiskers"] = json::array({"C1", "D2"});
+  j["time"] = {{"start_s", 0.03}, {"end_s", 0.0925}, {"frames", 126}};
+  j["head"]["pitches_deg"] = json::array({0.0, 10.0});
+  j["solver"]["links"] = 40;
+  const ArrayResult quasi = simulate_array(io::array_config_from_json(j));
+  j["dynamics"] = json::object();
+  const ArrayResult dyn = simulate_array(io::array_config_from_json(j));
+  ASSERT_EQ(dyn.base_W.size(), quasi.base_W.size());
+  for (std::size_t i = 0; i < dyn.base_W.size(); ++i) EXPECT_NEAR(dyn.base_W[i], quasi.base_W[i], 1e-12);
+  EXPECT_EQ(dyn.theta, quasi.theta);
+  ASSERT_EQ(dyn.tip_displacement_B.size(), dyn.force_B.size());
+  double peak = 0.0;
+  for (std::size_t k = 0; k < dyn.MB.size(); ++k) {
+    EXPECT_EQ(dyn.state[k], 0);  // in air
+    peak = std::max(peak, dyn.MB[k]);
+  }
+  EXPECT_GT(peak, 1e-9);  // tens of nN m: a whisk's inertia
+  EXPECT_GT(dyn.dynamics_steps, 0u);
+  EXPECT_TRUE(array_warnings(dyn).empty());
+  // No whisking and a still head: the follicle carries nothing (to rounding).
+  j["whisking"]["amplitude_deg"] = 0.0;
+  const ArrayResult still = simulate_array(io::array_config_from_json(j));
+  for (double m : still.MB) EXPECT_LT(m, 1e-16);  // rounding of the differentiated placements, 1e-8 of a whisk
+  j["dynamics"] = {{"density", -1.0}};
+  expect_config_error(j, "dynamics.density");
+}

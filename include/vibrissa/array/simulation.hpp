@@ -5,6 +5,7 @@
 // (contact/tracker.hpp, docs/conventions.md "Contact tracking"). The first frame is always free.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "vibrissa/array/head.hpp"
 #include "vibrissa/contact/tracker.hpp"
 #include "vibrissa/core/run_control.hpp"
+#include "vibrissa/dynamics/linear_model.hpp"
 #include "vibrissa/array/kinematics.hpp"
 #include "vibrissa/array/morphology.hpp"
 #include "vibrissa/array/objects.hpp"
@@ -39,6 +41,10 @@ struct SimulationConfig {
   std::vector<int> render_frames;  ///< frames whose rest and deflected shapes are kept (for the animation)
   int render_pitch = 0;            ///< index into `pitches` of the rendered run
   int threads = 0;                 ///< OpenMP threads (0: all)
+  /// `vibrissa array --dynamics` (docs/array.md, docs/dynamics.md): every whisker driven by the whisking and head
+  /// motion through the dynamics integrator (dynamics/simulate.hpp), in air: the objects are not touched (contact
+  /// during motion is not wired into the array yet). Frames must then be equally spaced.
+  std::optional<dynamics::DynamicsProperties> dynamics;
 };
 
 /// Throws std::invalid_argument naming the field for anything unusable.
@@ -79,6 +85,10 @@ struct ArrayResult {
   /// row, then p_WO [m]); the objects themselves are the config's (io::shape_to_json).
   std::vector<float> render_object_poses;
   std::size_t n_objects = 0;
+
+  /// With dynamics: tip displacement from rest in the whisker frame [m] (x3), and integrator steps per run.
+  std::vector<double> tip_displacement_B;
+  std::size_t dynamics_steps = 0, dynamics_rejected_steps = 0;
 
   std::size_t solves = 0;          ///< edge solves performed
   std::size_t failed_solves = 0;   ///< solves that ended not_converged (counted as pushed past)

@@ -22,6 +22,12 @@
 
 namespace vibrissa::dynamics {
 
+/// Air around a whisker (air_drag.hpp).
+struct AirProperties {
+  double density = 1.204;                 ///< [kg/m^3], dry air at 20 degC and 101.325 kPa
+  double kinematic_viscosity = 1.516e-5;  ///< [m^2/s], dry air at 20 degC (dynamic 1.825e-5 Pa s / density)
+};
+
 /// Material and damping of a whisker in motion. Defaults: docs/dynamics.md, "Parameters".
 struct DynamicsProperties {
   /// Density [kg/m^3]: keratin, about 1.3 g/cm^3 (the value used for whisker dynamics in the literature;
@@ -36,9 +42,14 @@ struct DynamicsProperties {
   std::optional<double> joint_damping_time;
   /// Gravity in the world frame [m/s^2]; zero by default (whiskers are light: docs/dynamics.md).
   Eigen::Vector3d gravity_W = Eigen::Vector3d::Zero();
+  /// Quadratic air drag on the links (air_drag.hpp); off by default (docs/dynamics.md, "Air drag": it changes the
+  /// base signals of whisking in air by a few per cent, and it is evaluated at the rigid base motion's velocity).
+  bool air_drag = false;
+  AirProperties air;
 };
 
-/// Throws std::invalid_argument naming the field and value for a non-positive density, a negative or
+/// Throws std::invalid_argument naming the field and value for a non-positive density (whisker or air), a
+/// non-positive air viscosity, a negative or
 /// non-finite damping ratio or damper time, or a non-finite gravity.
 void validate(const DynamicsProperties& props);
 
@@ -52,6 +63,11 @@ struct LinkInertia {
 /// Mass, centroid and rotational inertia of every link of the whisker at rest (exact for the frustum:
 /// 3-point Gauss-Legendre quadrature of polynomials of degree <= 4 along the chord).
 std::vector<LinkInertia> link_inertias(const Whisker& whisker, double density);
+
+/// Mass matrix (3N x 3N) of rigid links in spatial joint increments (joint j turns every link distal to it about
+/// node j): links with mass properties `links` (centroids and inertias in B) and nodes `nodes_B` (N+1). The
+/// kinetic energy of the links under x' = sum_{j<=i} theta_j' x (x - p_j), assembled in O(N^2) from tail sums.
+Eigen::MatrixXd chain_mass_matrix(const std::vector<LinkInertia>& links, const std::vector<Eigen::Vector3d>& nodes_B);
 
 /// Size of u(t): acceleration of the base minus gravity (3), angular acceleration (3), the six independent
 /// entries of Omega Omega^T (xx, yy, zz, xy, xz, yz), all in B, SI.

@@ -24,6 +24,12 @@ struct Modes {
   [[nodiscard]] int count() const { return static_cast<int>(omega.size()); }
 };
 
+namespace detail {
+/// Signs (largest node displacement component positive, joint shapes alike) and node shapes scaled to a largest
+/// node displacement of 1.
+void orient_and_scale_shapes(Modes& modes);
+}  // namespace detail
+
 /// The `count` lowest modes (all 3N when count <= 0 or larger than 3N).
 Modes modes(const LinearModel& model, const Whisker& whisker, int count = 0);
 Modes modes(const Whisker& whisker, const DynamicsProperties& props, int count = 0);

@@ -84,11 +84,16 @@ struct TimeSeries {
   double smallest_step = 0.0, largest_step = 0.0;     ///< accepted steps [s]
 };
 
+/// A load on the links besides the base motion (e.g. air drag, air_drag.hpp): at time t, adds its generalised force
+/// (3N, joint coordinates) to `force` and the wrench it transmits to the follicle (force, then moment about the
+/// base point; B axes) to `wrench_B`. It may depend on time and the base motion, not on the deflection.
+using ExternalLoad = std::function<void(double t, Eigen::VectorXd& force, Eigen::Matrix<double, 6, 1>& wrench_B)>;
+
 /// Integrates from t = 0 over options.duration. The frame of each output is computed from the exact state at
 /// that time (steps land on output times).
 TimeSeries simulate(const Whisker& whisker, const LinearModel& model, const Modes& modes,
                     const BaseTrajectory& base, const Eigen::Vector3d& gravity_W, const SimulationOptions& options,
-                    const InitialState& initial = {});
+                    const InitialState& initial = {}, const ExternalLoad& external = {});
 /// Builds the model and all its modes, then simulates.
 TimeSeries simulate(const Whisker& whisker, const DynamicsProperties& props, const BaseTrajectory& base,
                     const SimulationOptions& options, const InitialState& initial = {});

@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "vibrissa/array/kinematics.hpp"
+#include "vibrissa/dynamics/deflected_modes.hpp"
 #include "vibrissa/dynamics/simulate.hpp"
+#include "vibrissa/io/case_json.hpp"
 #include "vibrissa/io/labelled_data.hpp"
 
 namespace vibrissa::io {
@@ -34,7 +36,15 @@ struct DynamicsCase {
   std::optional<double> force_arc_length;
   dynamics::SimulationOptions options;
   int mode_count = 10;                    ///< modes listed (`vibrissa modes`, summary.json)
+  /// `vibrissa modes`: the modes about the equilibrium under this load (the "load" of `vibrissa solve`) instead
+  /// of about the rest shape; `hold` overrides how a contact holds (stick / slip; docs/dynamics.md).
+  std::optional<Load> load;
+  std::optional<dynamics::ContactModel> hold;
 };
+
+/// The "dynamics" object of a case (or of an array config): density, damping_ratio | joint_damping_time, gravity,
+/// air_drag, air_density, air_kinematic_viscosity; errors name the field and value.
+dynamics::DynamicsProperties dynamics_properties_from_json(const nlohmann::json& d);
 
 /// Reads {"whisker": {...as in solve...}, "dynamics": {...}, "whisking": {...}, "initial": {...}, "duration",
 /// "output_rate", "relative_tolerance", "absolute_tolerance", "modes"}; errors name the field and value.
@@ -44,8 +54,24 @@ DynamicsCase dynamics_case_from_json(const nlohmann::json& j, const Whisker& whi
 
 /// The base trajectory of a case.
 dynamics::BaseTrajectory base_trajectory(const DynamicsCase& c);
+/// The case's air drag as simulate()'s external load (empty when dynamics.air_drag is off).
+dynamics::ExternalLoad external_load(const DynamicsCase& c);
 /// The initial state of a case (empty: equilibrium under the base motion at t = 0).
 dynamics::InitialState initial_state(const DynamicsCase& c, const dynamics::LinearModel& model);
+
+/// The modes of a case: about the rest shape, or (with a load) about the equilibrium under it, found by the
+/// quasi-static solve of the load (as `vibrissa solve`) and refined on the dynamic chain.
+struct CaseModes {
+  dynamics::Modes modes;
+  std::optional<dynamics::DeflectedModes> deflected;
+  dynamics::HeldLoad held;
+  Solution solution;  ///< the quasi-static solve (with a load)
+};
+/// Throws std::runtime_error naming the status when the load's quasi-static solve fails, and
+/// std::invalid_argument for the inverse (base_wrench) mode, which has no load to hold.
+CaseModes case_modes(const DynamicsCase& c, int count);
+/// "equilibrium" of the modes' JSON: the load, contact model, constraints, Newton's residual, K_T's asymmetry.
+nlohmann::json equilibrium_to_json(const CaseModes& m, const Whisker& whisker);
 
 /// `vibrissa modes` result: frequencies, damped frequencies, damping ratios, torsion fractions, node shapes.
 nlohmann::json modes_to_json(const dynamics::Modes& modes, const Whisker& whisker, const DynamicsCase& c);
