@@ -1,5 +1,6 @@
 // Dynamics (issue 27, docs/dynamics.md): one whisker, N = 100, 1 s of whisking in air at 8 Hz (30 deg
-// amplitude) with 1 kHz output, default tolerance; the model and modes, the integration alone, and the whole.
+// amplitude) with 1 kHz output, default tolerance; the model and modes, the integration alone, and the whole; and
+// the same against a peg (frictionless, and mu = 0.3).
 //   build/bench/bench_dynamics --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -46,6 +47,40 @@ void BM_Integrate1sWhisking(benchmark::State& state) {
   state.counters["steps"] = static_cast<double>(steps);
 }
 BENCHMARK(BM_Integrate1sWhisking)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+/// The same whisking against a peg (radius 0.1 mm, vertical) placed where the rest whisker's point at s = 20 mm is
+/// at 20 degrees of protraction: the whisker touches it on every protraction, bends (up to 40 degrees further),
+/// slides off its tip and rings, 8 times (nonlinear chain, contact, events).
+void BM_Integrate1sWhiskingAgainstAPeg(benchmark::State& state) {
+  const Whisker w = bench_whisker();
+  const dynamics::LinearModel m = dynamics::linear_model(w, {});
+  const dynamics::Modes all = dynamics::modes(m, w);
+  const Pose rest = w.placement().pose();
+  int k = 0;
+  double h = 0.0;
+  w.locate(0.020, k, h);
+  const Placement at20(rotation_from_angles(rest.theta + 20.0 * std::numbers::pi / 180.0, rest.phi, rest.zeta),
+                       rest.p_W_base);
+  dynamics::LineObstacle peg;
+  peg.point_W = at20.to_world(w.rest_nodes_B()[static_cast<std::size_t>(k)]);
+  peg.direction_W = Eigen::Vector3d::UnitZ();
+  peg.radius = 1e-4;
+  peg.thickness = true;
+  peg.friction_coefficient = static_cast<double>(state.range(0)) / 10.0;
+  dynamics::SimulationOptions o;
+  o.record_nodes = false;
+  o.objects = {peg};
+  long steps = 0, events = 0;
+  for (auto _ : state) {
+    const auto ts = dynamics::simulate(w, m, all, whisk(w), Eigen::Vector3d::Zero(), o);
+    steps = ts.steps;
+    events = static_cast<long>(ts.events.size());
+    benchmark::DoNotOptimize(ts.moment_B.data());
+  }
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["events"] = static_cast<double>(events);
+}
+BENCHMARK(BM_Integrate1sWhiskingAgainstAPeg)->Arg(0)->Arg(3)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_Whole1sWhisking(benchmark::State& state) {
   const Whisker w = bench_whisker();

@@ -142,3 +142,22 @@ def test_array_dynamics_in_air():
     assert (r.state == 0).all() and r.MB.max() > 1e-9
     quasi = vibrissa.simulate_array(cfg)
     np.testing.assert_allclose(r.base_W, quasi.base_W, atol=1e-12)
+
+
+def test_a_peg_during_whisking_is_touched_then_let_go_at_the_tip():
+    # docs/dynamics.md, "Large deflection and contact during motion": protraction 0 -> 24 deg against a peg at 27 mm.
+    w = vibrissa.Whisker.from_parabola(0.03, 15.0, properties=vibrissa.WhiskerProperties(links=30))
+    peg = {"type": "peg", "point": [0.02486, 0.00977, 0.0], "direction": [0, 0, 1], "radius": 1e-4}
+    r = vibrissa.simulate_dynamics(w, 0.2, 500, objects=[peg],
+                                   whisking={"amplitude_deg": 12, "frequency_Hz": 2, "set_point_deg": 12})
+    assert r.status == "completed" and r.summary["model"] == "nonlinear"
+    assert [e["type"] for e in r.events] == ["touch", "release"]
+    assert r.events[1]["arc_length"] == pytest.approx(0.03, abs=1e-4)  # slides off the tip
+    assert r.events[0]["time"] < r.events[1]["time"] < 0.2
+    touching = (r.time > r.events[0]["time"] + 0.005) & (r.time < r.events[1]["time"] - 0.005)
+    assert np.all(r.contact0_state[touching] == 2)  # frictionless: slipping while touching
+    assert r.summary["max_penetration_m"] < 1e-7
+    with pytest.raises(ValueError, match=r"objects\[0\].type"):
+        vibrissa.simulate_dynamics(w, 0.01, objects=[{"type": "wall", "point": [0, 0, 0]}])
+    with pytest.raises(ValueError, match="linear"):
+        vibrissa.simulate_dynamics(w, 0.01, objects=[peg], model="linear")

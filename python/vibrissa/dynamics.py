@@ -81,6 +81,9 @@ class DynamicsResult(_NamedArrays):
         self.summary = json.loads(run.summary_json())
         self.status = run.status
         self.modes = _ModesView(run.modes, links)
+        #: contact events in time order: dicts with ``time`` [s], ``type`` ("touch", "slip", "stick", "release"),
+        #: ``object`` (index into ``objects``), ``arc_length`` [m], ``point_W`` and ``force_W`` (on the whisker).
+        self.events = self.summary.get("events", [])
 
     def __repr__(self):
         return (f"DynamicsResult(frames={len(self.datasets['time'])}, status={self.status!r}, "
@@ -98,14 +101,20 @@ class DynamicsResult(_NamedArrays):
 
 def simulate_dynamics(whisker, duration=1.0, output_rate=1000.0, *, whisking=None, tip_force=None,
                       force=None, arc_length=None, density=None, damping_ratio=None, joint_damping_time=None, gravity=None,
-                      relative_tolerance=None, absolute_tolerance=None):
+                      relative_tolerance=None, absolute_tolerance=None, objects=None, contact=None, model=None):
     """Motion of ``whisker`` over ``duration`` [s], frames at ``output_rate`` [Hz] (docs/dynamics.md).
 
     ``whisking``: a dict with the keys of the case's ``"whisking"`` (``amplitude_deg``, ``frequency_Hz``,
     ``set_point_deg``, ``phase_deg``, ``series`` {``time_s``, ``dtheta_deg``}, ``k_phi``, ``k_zeta``): the base
     turns about the whisker's pose; None: the base holds still. ``tip_force`` (3,) [N] in the whisker frame:
     start in equilibrium under it, released at t = 0; ``force`` with ``arc_length`` [m]: the same at that arc
-    length (a peg letting go). ``gravity`` (3,) [m/s²] in the world frame."""
+    length (a peg letting go). ``gravity`` (3,) [m/s²] in the world frame.
+
+    ``objects``: a list of dicts as the case's ``"objects"`` (``{"type": "peg", "point": [...], "direction": [...],
+    "radius": r, "friction_coefficient": mu}`` or ``{"type": "edge", ...}``, world frame, SI) that the whisker may
+    touch during the motion (the nonlinear chain; events in ``result.events``, per-object columns ``contact0_...``);
+    ``contact``: ``{"stiffness", "tangential_stiffness", "damping_ratio"}``; ``model``: "automatic", "linear" or
+    "nonlinear"."""
     initial = {}
     if tip_force is not None:
         initial["tip_force"] = [float(f) for f in tip_force]
@@ -115,5 +124,6 @@ def simulate_dynamics(whisker, duration=1.0, output_rate=1000.0, *, whisking=Non
         initial["arc_length"] = float(arc_length)
     text = _settings(density, damping_ratio, joint_damping_time, gravity, duration=float(duration),
                      output_rate=float(output_rate), whisking=whisking, initial=initial or None,
-                     relative_tolerance=relative_tolerance, absolute_tolerance=absolute_tolerance)
+                     relative_tolerance=relative_tolerance, absolute_tolerance=absolute_tolerance,
+                     objects=list(objects) if objects is not None else None, contact=contact, model=model)
     return DynamicsResult(_simulate_dynamics(whisker, text), whisker.links)

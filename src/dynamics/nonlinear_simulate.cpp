@@ -147,7 +147,12 @@ class Integrator {
       cv.point_W = f.base.p_W_base + R * cv.x_B;
       const ContactValue& before = previous[o];
       cv.anchor = before.anchor;
-      if (cv.gap >= 0.0) continue;
+      // Newton's later iterations keep the contact set (and the stick/slip branch) of the earlier ones: the
+      // switches are not smooth, and near grazing or the cone's edge the iteration would cycle. The stage's final
+      // evaluation decides them again.
+      const bool frozen_on = frozen && (*frozen)[o] != ContactState::none;
+      if (frozen && !frozen_on) continue;
+      if (cv.gap >= 0.0 && !frozen_on) continue;
       // In contact: normal n (from the line to the whisker), tangent e (along the line).
       const Eigen::Vector3d rel = cv.x_B - c_B;
       Eigen::Vector3d n = dist > 0.0 ? Eigen::Vector3d(best_r / dist) : Eigen::Vector3d(best_t.cross(e_B).normalized());
@@ -172,13 +177,14 @@ class Integrator {
       const double inv_mass = (Ui * n).squaredNorm();
       const double cn = 2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / std::max(inv_mass, 1e-300));
       const double gap_rate = n.dot(v_B);
-      const double fn = std::max(0.0, -kn_ * cv.gap - cn * gap_rate);
+      const double fn_raw = -kn_ * cv.gap - cn * gap_rate;
+      const double fn = frozen_on ? fn_raw : std::max(0.0, fn_raw);
       const double lambda = e_B.dot(rel);
       if (before.state == ContactState::none) cv.anchor = lambda;  // touches: sticks where it touched
       const double mu = ob.friction_coefficient;
       double ft = 0.0;
-      if (fn > 0.0) {
-        const bool damped = -kn_ * cv.gap - cn * gap_rate > 0.0 && cn * gap_rate != 0.0;
+      if (fn > 0.0 || frozen_on) {
+        const bool damped = frozen_on || (fn_raw > 0.0 && cn * gap_rate != 0.0);
         const Eigen::Vector3d dfn_dx = -kn_ * n, dfn_dv = damped ? Eigen::Vector3d(-cn * n) : Eigen::Vector3d::Zero();
         cv.S_x = n * dfn_dx.transpose();
         cv.S_v = n * dfn_dv.transpose();
@@ -187,8 +193,6 @@ class Integrator {
         // one) adds to the force, which stays inside the cone.
         const double ct = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * e_B).squaredNorm(), 1e-300));
         const double spring = -kt_ * (lambda - cv.anchor), damper = -ct * e_B.dot(v_B);
-        // Newton's later iterations keep the stick/slip branch of the earlier ones (the switch is not smooth: near
-        // the cone's edge the iteration would cycle); the stage's final evaluation decides it again.
         const ContactState keep = frozen ? (*frozen)[o] : ContactState::none;
         const bool stick = keep != ContactState::none ? keep == ContactState::stick && mu > 0.0
                                                       : mu > 0.0 && std::abs(spring) <= mu * fn;
@@ -212,8 +216,11 @@ class Integrator {
           cv.S_v += (sign * mu) * e_B * dfn_dv.transpose();
         }
       } else {
+        // Inside, but the damper pulls harder than the spring pushes: no force. Still touching (the state follows
+        // the gap, so that events are touch and release of the surfaces, not of the force).
         cv.anchor = lambda;
-        continue;  // inside, but the damper pulls harder than the spring pushes: no force
+        cv.state = before.state != ContactState::none ? before.state : ContactState::slip;
+        continue;
       }
       cv.force_B = fn * n + ft * e_B;
       cv.force_W = R * cv.force_B;
@@ -223,11 +230,12 @@ class Integrator {
   }
 
   /// Solves the stage Y = A + g f(t, Y) for its rates. Returns false when Newton's method does not converge.
+  /// `guess`: a modal contact force to start Newton's method from (the last one known).
   bool stage(const Frame& f, double g, const Eigen::VectorXd& A_eta, const Eigen::VectorXd& A_rate,
-             const std::vector<ContactValue>& previous, double tol, State& out) {
+             const std::vector<ContactValue>& previous, const Eigen::VectorXd& guess, double tol, State& out) {
     const Eigen::VectorXd D = Eigen::VectorXd::Ones(m_) + g * c_ + (g * g) * k_;
     const Eigen::VectorXd b0 = A_rate + g * (f.modal_input - k_.cwiseProduct(A_eta));
-    Eigen::VectorXd Y = b0.cwiseQuotient(D);
+    Eigen::VectorXd Y = (b0 + g * guess).cwiseQuotient(D);
     std::vector<Eigen::MatrixXd> U;
     std::vector<ContactState> frozen;
     for (int it = 0; it < 25; ++it) {
@@ -243,7 +251,8 @@ class Integrator {
       std::vector<Eigen::Index> active;
       for (std::size_t o = 0; o < U.size(); ++o)
         if (U[o].size() != 0) active.push_back(static_cast<Eigen::Index>(o));
-      if (active.empty() && it == 0 && out.contact_force.isZero(0.0)) return true;  // no contact: exact
+      if (active.empty() && it == 0 && out.contact_force.isZero(0.0) && guess.isZero(0.0))
+        return true;  // no contact: exact
       Eigen::VectorXd delta;
       const Eigen::VectorXd Dinv_r = r.cwiseQuotient(D);
       if (active.empty()) {
@@ -278,11 +287,11 @@ class Integrator {
   bool step(double t, double h, const State& y, double tol, State& out) {
     const double g = gamma_sdirk * h;
     State Y1;
-    if (!stage(frame(t + g), g, y.eta, y.rate, y.contacts, tol, Y1)) return false;
+    if (!stage(frame(t + g), g, y.eta, y.rate, y.contacts, y.contact_force, tol, Y1)) return false;
     // f(Y1) = (Y1 - y) / g; stage 2: Y2 = y + (1 - gamma) h f(Y1) + g f(t + h, Y2).
     const double w = (1.0 - gamma_sdirk) / gamma_sdirk;
     const Eigen::VectorXd A_eta = y.eta + w * (Y1.eta - y.eta), A_rate = y.rate + w * (Y1.rate - y.rate);
-    return stage(frame(t + h), g, A_eta, A_rate, y.contacts, tol, out);
+    return stage(frame(t + h), g, A_eta, A_rate, y.contacts, Y1.contact_force, tol, out);
   }
 
   TimeSeries run(const InitialState& initial) {
