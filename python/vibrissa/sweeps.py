@@ -30,7 +30,7 @@ from .sweep_store import SweepStore
 __all__ = ["sweep", "main"]
 
 MAX_RUNS = 1_000_000  # index.json and the task graph stay small (docs/sweeps.md, "Scale")
-CHUNKS_PER_WORKER = 8  # default chunking: enough tasks to balance load, few enough to keep overhead small
+CHUNKS_PER_WORKER = 16  # default chunking: a short tail when the last tasks finish, few enough to keep overhead small
 
 
 def _base_config(kind, base, relative_to):
@@ -151,7 +151,7 @@ def sweep(kind, base=None, *, grid=None, runs=None, out=None, variables=None, sc
     scheduler: None (a LocalCluster of `workers` processes, default os.cpu_count()), a scheduler address
     ("tcp://host:8786"; its workers need this vibrissa build) or "serial" (this process, no Dask).
     client: an existing ``dask.distributed.Client`` (then `scheduler` and `workers` are not used).
-    chunk_size: runs per task (default: about 8 tasks per worker). progress(done, total) counts runs.
+    chunk_size: runs per task (default: about 16 tasks per worker). progress(done, total) counts runs.
 
     Returns ``xarray.open_dataset(out/"sweep.nc")`` (lazy; ``.load()`` reads it into memory). Ctrl-C stops
     the sweep (the cluster it started is shut down, the finished chunks stay in `out`) and raises
@@ -341,7 +341,7 @@ def main(argv=None):
     parser.add_argument("--out", help="output folder (default: the config's 'out', else sweep_results)")
     parser.add_argument("--scheduler", help="scheduler address (tcp://host:8786) or 'serial' (this process)")
     parser.add_argument("--workers", type=int, help="worker processes of the local cluster (default: all cores)")
-    parser.add_argument("--chunk-size", type=int, help="runs per task (default: about 8 tasks per worker)")
+    parser.add_argument("--chunk-size", type=int, help="runs per task (default: about 16 tasks per worker)")
     args = parser.parse_args(argv)
 
     def stop(signum, _frame):  # SIGTERM/SIGHUP: unwind like Ctrl-C, so the cluster is shut down
