@@ -156,3 +156,62 @@ def test_figure_scripts_replace_their_files_atomically(tmp_path, how, code):
     assert done.returncode == code, done.stderr
     assert figure.read_bytes() == (b"half a new figure" if how == "finish" else b"old figure")
     assert leftovers(tmp_path) == []
+
+
+def test_several_trials_are_analysed_each_with_one_summary_table(cli, tmp_path):
+    # The per-whisker trials of `vibrissa reconstruct --whisker` (NAME/trial.h5): one folder each inside --out,
+    # named after the trial's folder since the file names repeat; a bad trial does not stop the others.
+    import numpy as np
+    import vibrissa
+    for name, seed in (("C1", 1), ("C2", 3)):
+        (tmp_path / name).mkdir()
+        subprocess.run([cli, "synth", str(tmp_path / name / "trial.h5"), "--duration", "0.5", "--seed", str(seed)],
+                       check=True, capture_output=True)
+    (tmp_path / "D1").mkdir()
+    (tmp_path / "D1" / "trial.csv").write_text("not a trial\n")
+    trials = [str(tmp_path / n / f) for n, f in (("C1", "trial.h5"), ("D1", "trial.csv"), ("C2", "trial.h5"))]
+    run = subprocess.run([cli, "trial", *trials, "--out", str(tmp_path / "all"), "--no-figures", "--mu", "0.48"],
+                         capture_output=True, text=True)
+    assert run.returncode == 1 and "1 of 3 trials failed" in run.stderr and "D1/trial.csv" in run.stderr
+    lines = (tmp_path / "all" / "trials_summary.tsv").read_text().splitlines()
+    assert lines[0].split("\t") == ["trial", "frames", "contact_periods", "contact_frames", "median_mu", "mu_frames",
+                                    "results"]
+    rows = [line.split("\t") for line in lines[1:]]
+    assert [r[0] for r in rows] == [trials[0], trials[2]]
+    for row, name in zip(rows, ("C1", "C2")):
+        summary = json.loads((tmp_path / "all" / name / "summary.json").read_text())
+        direct = vibrissa.analyze_trial(vibrissa.read_trial(str(tmp_path / name / "trial.h5")), mu=0.48)
+        assert row[6] == str(tmp_path / "all" / name) and int(row[1]) == len(direct.time)
+        assert float(row[4]) == pytest.approx(direct.summary["friction"]["median"], rel=1e-5)
+        assert summary["friction"]["median"] == direct.summary["friction"]["median"]
+        assert not np.isnan(float(row[4]))
+    same = subprocess.run([cli, "trial", trials[0], trials[0], "--out", str(tmp_path / "x"), "--no-figures"],
+                          capture_output=True, text=True)
+    assert same.returncode == 1 and "--out" in same.stderr and "repeat" in same.stderr
+
+
+def test_analyze_trials_gives_the_cli_summary_table(cli, tmp_path):
+    import vibrissa
+    paths = {}
+    for name, seed in (("C1", 1), ("C2", 3)):
+        paths[name] = tmp_path / f"{name}.h5"
+        subprocess.run([cli, "synth", str(paths[name]), "--duration", "0.5", "--seed", str(seed)], check=True,
+                       capture_output=True)
+    results, table = vibrissa.analyze_trials({n: vibrissa.read_trial(str(p)) for n, p in paths.items()}, mu=0.48)
+    assert list(table.index) == ["C1", "C2"] and set(results) == {"C1", "C2"}
+    run = subprocess.run([cli, "trial", str(paths["C1"]), str(paths["C2"]), "--out", str(tmp_path / "all"),
+                          "--no-figures", "--mu", "0.48"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    rows = [line.split("\t") for line in (tmp_path / "all" / "trials_summary.tsv").read_text().splitlines()[1:]]
+    for row, name in zip(rows, ("C1", "C2")):
+        line = table.loc[name]
+        assert [int(row[1]), int(row[2]), int(row[3]), int(row[5])] == [
+            line.frames, line.contact_periods, line.contact_frames, line.mu_frames]
+        assert float(row[4]) == pytest.approx(line.median_mu, rel=1e-5)
+        assert results[name].summary["friction"]["median"] == line.median_mu
+    # reconstruct(whiskers=...) pairs and lists of paths are taken too
+    again = vibrissa.analyze_trials({"C1": (vibrissa.read_trial(str(paths["C1"])), {})}, mu=0.48)[1]
+    assert again.loc["C1"].median_mu == table.loc["C1"].median_mu
+    assert list(vibrissa.analyze_trials([paths["C2"]])[1].index) == [str(paths["C2"])]
+    with pytest.raises(ValueError, match="trials"):
+        vibrissa.analyze_trials({})

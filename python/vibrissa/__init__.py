@@ -86,6 +86,7 @@ from .pipeline import (  # noqa: F401
     Trial,
     TrialResult,
     analyze_trial,
+    analyze_trials,
     default_array_config,
     read_trial,
     simulate_array,
@@ -105,7 +106,7 @@ def _solution_view(self, path="solve_view.html", case=None):
 Solution.view = _solution_view  # a method of the compiled class, written in Python (the viewer is Python)
 
 __all__ = [
-    "ArrayResult", "Trial", "TrialResult", "analyze_trial", "default_array_config", "read_trial",
+    "ArrayResult", "Trial", "TrialResult", "analyze_trial", "analyze_trials", "default_array_config", "read_trial",
     "simulate_array", "synthesize_trial", "synthesize_trial_defaults",
     "BaseJoint", "BatchResult", "Box", "Case", "Cylinder", "Mesh", "Plane", "Shape", "Sphere", "solve_object",
     "solve_frictional_object", "ContactMode", "ContactState", "ContactTracker", "Edge", "FrictionState", "LoadState", "Pose",

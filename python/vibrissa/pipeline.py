@@ -22,7 +22,7 @@ from . import _vibrissa
 from .labelled import to_dataset
 from ._vibrissa import Trial, read_trial  # noqa: F401
 
-__all__ = ["ArrayResult", "Trial", "TrialResult", "analyze_trial", "default_array_config", "read_trial",
+__all__ = ["ArrayResult", "Trial", "TrialResult", "analyze_trial", "analyze_trials", "default_array_config", "read_trial",
            "simulate_array", "synthesize_trial", "synthesize_trial_defaults"]
 
 _FIGURES_DIR = pathlib.Path(__file__).resolve().parent / "figures"
@@ -191,6 +191,34 @@ def analyze_trial(trial, mu=None, cutoff=85.0, filter_order=2, no_filter=False, 
     outputs = _vibrissa._analyze_trial(trial, mu, mu_eq7, float(cutoff), int(filter_order), bool(no_filter),
                                        bool(no_roll_fit), bool(rest_shape_per_contact), progress)
     return TrialResult(outputs, trial)
+
+
+def analyze_trials(trials, **options):
+    """Analyses several trials as ``vibrissa trial TRIAL...`` does: `trials` a dict name -> trial (a :class:`Trial`, a
+    path, or a ``(trial, report)`` pair as ``reconstruct(..., whiskers=...)`` returns them) or a list of paths (named
+    by their paths); `options` those of :func:`analyze_trial`. Returns ``(results, table)``: a dict name ->
+    :class:`TrialResult` and a ``pandas.DataFrame`` indexed by name with the columns of ``vibrissa trial``'s summary
+    table (frames, contact_periods, contact_frames, median_mu, mu_frames; median_mu NaN where no frame gave one)."""
+    import pandas as pd
+    if not isinstance(trials, dict):
+        trials = {os.fspath(path): path for path in trials}
+    if not trials:
+        raise ValueError("trials: give at least one trial")
+    results, rows = {}, []
+    for name, trial in trials.items():
+        if isinstance(trial, tuple):
+            trial = trial[0]
+        result = analyze_trial(trial, **options)
+        results[name] = result
+        friction = result.summary.get("friction") or {}
+        used = int(friction.get("frames_used", 0) or 0)
+        rows.append({"name": name, "frames": len(result.time),
+                     "contact_periods": int(result.summary["contact_periods"]),
+                     "contact_frames": int(result.summary["contact_frames"]),
+                     "median_mu": float(friction["median"]) if used and friction.get("median") is not None
+                     else float("nan"),
+                     "mu_frames": used})
+    return results, pd.DataFrame(rows).set_index("name")
 
 
 def default_array_config():

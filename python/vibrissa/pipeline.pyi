@@ -2,7 +2,7 @@
 
 import os
 import pathlib
-from typing import Any, Callable, Optional, Union
+from typing import Any, Callable, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -38,6 +38,9 @@ def analyze_trial(trial: Union[Trial, PathLike], mu: Optional[float] = None, cut
                   filter_order: int = 2, no_filter: bool = False, *, mu_eq7: Optional[float] = None,
                   no_roll_fit: bool = False, rest_shape_per_contact: bool = False,
                   progress: Progress = None) -> TrialResult: ...
+
+def analyze_trials(trials: Union[dict[str, Any], Sequence[PathLike]], **options: Any
+                   ) -> tuple[dict[str, TrialResult], Any]: ...  # (results, pandas.DataFrame)
 
 def default_array_config() -> dict[str, Any]: ...
 
