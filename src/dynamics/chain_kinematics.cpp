@@ -1,16 +1,11 @@
 // Exact kinematics of the chain in joint coordinates (include/vibrissa/dynamics/chain_kinematics.hpp).
 #include "vibrissa/dynamics/chain_kinematics.hpp"
+#include "vibrissa/dynamics/skew.hpp"
 
 #include <cmath>
 
 namespace vibrissa::dynamics {
 namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
-  Eigen::Matrix3d m;
-  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return m;
-}
 
 /// a = sin t / t, b = (1 - cos t) / t^2, c = (t - sin t) / t^3, smooth at t = 0: Taylor series below t = 0.1,
 /// where the first omitted terms (t^10 / 11!, t^10 / 12!, t^10 / 13!) are below 3e-18.

@@ -1,5 +1,6 @@
 // Modes about a deflected equilibrium (include/vibrissa/dynamics/deflected_modes.hpp, docs/dynamics.md).
 #include "vibrissa/dynamics/deflected_modes.hpp"
+#include "vibrissa/dynamics/skew.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,12 +20,6 @@ namespace vibrissa::dynamics {
 namespace {
 
 Eigen::Index at(std::size_t j) { return static_cast<Eigen::Index>(3 * j); }
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
-  Eigen::Matrix3d m;
-  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return m;
-}
 
 Eigen::Matrix3d exp_so3(const Eigen::Vector3d& w) {
   double a = 0.0, b = 0.0;

@@ -1,5 +1,6 @@
 // Inertia, damping and the linearised equations of motion (include/vibrissa/dynamics/linear_model.hpp).
 #include "vibrissa/dynamics/linear_model.hpp"
+#include "vibrissa/dynamics/skew.hpp"
 
 #include <array>
 #include <cmath>
@@ -16,12 +17,6 @@
 
 namespace vibrissa::dynamics {
 namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
-  Eigen::Matrix3d m;
-  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return m;
-}
 
 Eigen::Index at(std::size_t j) { return static_cast<Eigen::Index>(3 * j); }
 

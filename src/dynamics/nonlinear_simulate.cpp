@@ -25,15 +25,10 @@
 
 #include "vibrissa/core/checks.hpp"
 #include "vibrissa/dynamics/chain_kinematics.hpp"
+#include "vibrissa/dynamics/skew.hpp"
 
 namespace vibrissa::dynamics::detail {
 namespace {
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
-  Eigen::Matrix3d m;
-  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
-  return m;
-}
 
 const double gamma_sdirk = 1.0 - 1.0 / std::sqrt(2.0);
 
