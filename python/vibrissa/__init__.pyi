@@ -59,6 +59,7 @@ from .pipeline import ArrayResult as ArrayResult
 from .pipeline import Trial as Trial
 from .pipeline import TrialResult as TrialResult
 from .pipeline import analyze_trial as analyze_trial
+from .pipeline import analyze_trials as analyze_trials
 from .recon import reconstruct as reconstruct
 from .pipeline import default_array_config as default_array_config
 from .pipeline import read_trial as read_trial
