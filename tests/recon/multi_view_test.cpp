@@ -18,25 +18,11 @@
 
 using namespace vibrissa;
 using namespace vibrissa::recon;
+using test_support::whisker_at;
 
 namespace {
 constexpr double deg = std::numbers::pi / 180.0;
 
-/// Frame i of a whisking 30 mm whisker y = 8 x^2 (B frame), 25 points.
-std::vector<Eigen::Vector3d> whisker_at(int i) {
-  Pose p;
-  p.p_W_base = Eigen::Vector3d(0.001 + 0.0008 * std::sin(0.1 * i), -0.002 + 0.0003 * std::sin(0.15 * i), 0.0005);
-  p.theta = (10.0 + 25.0 * std::sin(0.12 * i)) * deg;
-  p.phi = 10.0 * deg;
-  p.zeta = 20.0 * deg;
-  const Placement X(p);
-  std::vector<Eigen::Vector3d> pts;
-  for (int k = 0; k < 25; ++k) {
-    const double x = 0.03 * k / 24.0;
-    pts.push_back(X.to_world(Eigen::Vector3d(x, 8.0 * x * x, 0.0)));
-  }
-  return pts;
-}
 
 /// A third camera, oblique: 0.3 m from the whisker's region, looking at it from below, behind and to the side.
 Camera side_camera(double focal = 2400.0) {
