@@ -18,9 +18,15 @@ default peg at (20, -8, -3) mm), 1 s at 1 kHz:
                Prints the WHISKiT command line that places the peg where vibrissa's is.
   ours         runs `vibrissa array CONFIG --dynamics` on the same scene under /usr/bin/time -v and prints its
                CPU and wall time and the load average.
+  peg-whisker NAME
+               one whisker of the scene (e.g. C1R: the array's shape, placement and whisk, checked against the
+               array's) through `vibrissa.simulate_dynamics` against the scene's peg with WHISKiT's radius (1 mm)
+               and friction (0.25), 1 s at 1 kHz, N = 100, and prints its CPU time, steps and events: the
+               contact side, while `vibrissa array --dynamics` does not touch objects.
 
 Usage: /usr/bin/python3 bench/whiskit_compare.py inputs /tmp/whiskit_inputs --whiskit-data PATH/code/data
        /usr/bin/python3 bench/whiskit_compare.py ours [--vibrissa build/bin/vibrissa] [--threads 1] [--links N]
+       /usr/bin/python3 bench/whiskit_compare.py peg-whisker C1R [--duration 1] [--mu 0.25] [--peg-radius-mm 1]
 (PYTHONPATH=build/python for `inputs`.)"""
 import argparse
 import json
@@ -176,7 +182,6 @@ def cmd_inputs(args) -> int:
 
 
 def cmd_ours(args) -> int:
-    import vibrissa
     frames = int(round(DURATION_S / STEP_S)) + 1
     with tempfile.TemporaryDirectory() as tmp:
         config = pathlib.Path(tmp) / "scene.json"
@@ -202,6 +207,68 @@ def cmd_ours(args) -> int:
     return 0
 
 
+def array_whisker_case(name: str, peg_radius_m: float, mu: float):
+    """One whisker of the scene as `vibrissa.simulate_dynamics` arguments: the whisker (S, A, Belli's base radius,
+    taper 15, placed as the array places it, vibrissa's angles), the whisk with its row's slopes (fitted to the
+    array's own angle series, so they are the array's), and the scene's peg with a radius."""
+    import vibrissa
+    frames = 101
+    result = vibrissa.simulate_array(scene(frames, 0.1, peg=False))
+    names = [str(n) for n in result["whisker"]]
+    w = names.index(name)
+    row, column = int(result["row"][w]), int(result["column"][w])
+    theta, phi, zeta = result["theta"][w], result["phi"][w], result["zeta"][w]
+    base_m = result["base_W"][0, w, 0, :]
+    shown = int(result["render/frame"][0])
+    rest = result["render/rest"][0, w].astype(float)
+    S = float(np.sum(np.linalg.norm(np.diff(rest, axis=0), axis=1)))
+    local = (rest - result["base_W"][0, w, shown, :]) @ rotation(theta, phi, zeta)[shown]
+    A = float(-np.sum(local[:, 2] * local[:, 0] ** 2) / np.sum(local[:, 0] ** 4))      # 1/m
+    whisking = scene(frames, 0.1)["whisking"]
+    t = np.linspace(0.0, 0.1, frames)
+    dtheta = np.radians(whisking["set_point_deg"] - whisking["amplitude_deg"] *
+                        np.cos(2 * np.pi * whisking["frequency_Hz"] * t + np.radians(whisking["phase_deg"])))
+    theta_rest = float(np.mean(theta - dtheta))
+    k_phi = float(np.polyfit(dtheta, phi, 1)[0])
+    k_zeta = float(np.polyfit(dtheta, zeta, 1)[0])
+    phi_rest = float(np.mean(phi - k_phi * dtheta))
+    zeta_rest = float(np.mean(zeta - k_zeta * dtheta))
+    d_base_mm = 0.041 + 0.002 * S * 1e3 + 0.011 * row - 0.0039 * column       # Belli 2018 (docs/array.md)
+    whisker = vibrissa.make_whisker(length=S, curvature=A, links=100, base_radius=d_base_mm / 2 * 1e-3,
+                                    taper_ratio=15,
+                                    pose={"base": base_m.tolist(), "theta": theta_rest - np.pi / 2,
+                                          "phi": phi_rest, "zeta": zeta_rest - np.pi / 2})
+    peg = scene(frames, 0.1)["objects"][0]
+    objects = [{"type": "peg", "point": [v * 1e-3 for v in peg["point_mm"]], "direction": [0, 0, 1],
+                "radius": peg_radius_m, "friction_coefficient": mu}]
+    whisking = dict(whisking, k_phi=k_phi, k_zeta=k_zeta)
+    whisking.pop("slopes", None)
+    at_shown = vibrissa.make_whisker(length=S, curvature=A, links=100,
+                                     pose={"base": result["base_W"][0, w, shown, :].tolist(),
+                                           "theta": float(theta[shown]) - np.pi / 2, "phi": float(phi[shown]),
+                                           "zeta": float(zeta[shown]) - np.pi / 2})
+    gap = float(np.abs(np.asarray(at_shown.rest_nodes_W) - rest).max())
+    return whisker, whisking, objects, gap
+
+
+def cmd_peg_whisker(args) -> int:
+    import resource
+    import vibrissa
+    whisker, whisking, objects, gap = array_whisker_case(args.name, args.peg_radius_mm * 1e-3, args.mu)
+    print(f"{args.name}: shape and placement as the array's to {gap * 1e6:.2g} um; whisking {json.dumps(whisking)}")
+    load = os.getloadavg()[0]
+    start = resource.getrusage(resource.RUSAGE_SELF)
+    result = vibrissa.simulate_dynamics(whisker, args.duration, 1000.0, whisking=whisking, objects=objects)
+    end = resource.getrusage(resource.RUSAGE_SELF)
+    cpu = (end.ru_utime - start.ru_utime) + (end.ru_stime - start.ru_stime)
+    kinds = [e["type"] for e in result.events]
+    print(f"{args.name} against the peg (radius {args.peg_radius_mm:g} mm, mu {args.mu:g}), {args.duration:g} s, "
+          f"1 kHz, N = 100: CPU {cpu:.2f} s, steps {result.summary['steps']} "
+          f"(rejected {result.summary['rejected_steps']}), status {result.summary['status']}, events "
+          f"{ {k: kinds.count(k) for k in sorted(set(kinds))} }, load average {load:.1f} -> {os.getloadavg()[0]:.1f}")
+    return 0
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
@@ -212,8 +279,13 @@ def main() -> int:
     p.add_argument("--vibrissa", default="build/bin/vibrissa")
     p.add_argument("--threads", type=int, default=1)
     p.add_argument("--links", type=int, default=0, help="links per whisker (default: the config's, 100)")
+    p = sub.add_parser("peg-whisker")
+    p.add_argument("name", help="a whisker of the array, e.g. C1R")
+    p.add_argument("--duration", type=float, default=DURATION_S)
+    p.add_argument("--peg-radius-mm", type=float, default=1.0, help="WHISKiT's peg: 1 mm")
+    p.add_argument("--mu", type=float, default=0.25, help="WHISKiT's: 0.5 x 0.5 (Bullet multiplies frictions)")
     args = parser.parse_args()
-    return cmd_inputs(args) if args.command == "inputs" else cmd_ours(args)
+    return {"inputs": cmd_inputs, "ours": cmd_ours, "peg-whisker": cmd_peg_whisker}[args.command](args)
 
 
 if __name__ == "__main__":
