@@ -18,11 +18,11 @@ default peg at (20, -8, -3) mm), 1 s at 1 kHz:
                Prints the WHISKiT command line that places the peg where vibrissa's is.
   ours         runs `vibrissa array CONFIG --dynamics` on the same scene under /usr/bin/time -v and prints its
                CPU and wall time and the load average.
-  peg-whisker NAME
+  peg-whisker NAME|all
                one whisker of the scene (e.g. C1R: the array's shape, placement and whisk, checked against the
-               array's) through `vibrissa.simulate_dynamics` against the scene's peg with WHISKiT's radius (1 mm)
-               and friction (0.25), 1 s at 1 kHz, N = 100, and prints its CPU time, steps and events: the
-               contact side, while `vibrissa array --dynamics` does not touch objects.
+               array's) or every one in turn through `vibrissa.simulate_dynamics` against the scene's peg with
+               WHISKiT's radius (1 mm) and friction (0.25), 1 s at 1 kHz, N = 100, and prints the CPU time, steps
+               and events: the contact side, while `vibrissa array --dynamics` does not touch objects.
 
 Usage: /usr/bin/python3 bench/whiskit_compare.py inputs /tmp/whiskit_inputs --whiskit-data PATH/code/data
        /usr/bin/python3 bench/whiskit_compare.py ours [--vibrissa build/bin/vibrissa] [--threads 1] [--links N]
@@ -207,13 +207,19 @@ def cmd_ours(args) -> int:
     return 0
 
 
-def array_whisker_case(name: str, peg_radius_m: float, mu: float):
+def array_kinematics(frames: int = 101):
+    """The scene's array over its first 0.1 s (placements and angles only): the input of array_whisker_case."""
+    import vibrissa
+    return vibrissa.simulate_array(scene(frames, 0.1, peg=False))
+
+
+def array_whisker_case(name: str, peg_radius_m: float, mu: float, result=None):
     """One whisker of the scene as `vibrissa.simulate_dynamics` arguments: the whisker (S, A, Belli's base radius,
     taper 15, placed as the array places it, vibrissa's angles), the whisk with its row's slopes (fitted to the
     array's own angle series, so they are the array's), and the scene's peg with a radius."""
     import vibrissa
-    frames = 101
-    result = vibrissa.simulate_array(scene(frames, 0.1, peg=False))
+    result = array_kinematics() if result is None else result
+    frames = len(result["time"])
     names = [str(n) for n in result["whisker"]]
     w = names.index(name)
     row, column = int(result["row"][w]), int(result["column"][w])
@@ -254,18 +260,23 @@ def array_whisker_case(name: str, peg_radius_m: float, mu: float):
 def cmd_peg_whisker(args) -> int:
     import resource
     import vibrissa
-    whisker, whisking, objects, gap = array_whisker_case(args.name, args.peg_radius_mm * 1e-3, args.mu)
-    print(f"{args.name}: shape and placement as the array's to {gap * 1e6:.2g} um; whisking {json.dumps(whisking)}")
-    load = os.getloadavg()[0]
-    start = resource.getrusage(resource.RUSAGE_SELF)
-    result = vibrissa.simulate_dynamics(whisker, args.duration, 1000.0, whisking=whisking, objects=objects)
-    end = resource.getrusage(resource.RUSAGE_SELF)
-    cpu = (end.ru_utime - start.ru_utime) + (end.ru_stime - start.ru_stime)
-    kinds = [e["type"] for e in result.events]
-    print(f"{args.name} against the peg (radius {args.peg_radius_mm:g} mm, mu {args.mu:g}), {args.duration:g} s, "
-          f"1 kHz, N = 100: CPU {cpu:.2f} s, steps {result.summary['steps']} "
-          f"(rejected {result.summary['rejected_steps']}), status {result.summary['status']}, events "
-          f"{ {k: kinds.count(k) for k in sorted(set(kinds))} }, load average {load:.1f} -> {os.getloadavg()[0]:.1f}")
+    kinematics = array_kinematics()
+    names = [str(n) for n in kinematics["whisker"]] if args.name == "all" else [args.name]
+    total, load = 0.0, os.getloadavg()[0]
+    for name in names:
+        whisker, whisking, objects, gap = array_whisker_case(name, args.peg_radius_mm * 1e-3, args.mu, kinematics)
+        print(f"{name}: shape and placement as the array's to {gap * 1e6:.2g} um; whisking {json.dumps(whisking)}")
+        start = resource.getrusage(resource.RUSAGE_SELF)
+        result = vibrissa.simulate_dynamics(whisker, args.duration, 1000.0, whisking=whisking, objects=objects)
+        end = resource.getrusage(resource.RUSAGE_SELF)
+        cpu = (end.ru_utime - start.ru_utime) + (end.ru_stime - start.ru_stime)
+        total += cpu
+        kinds = [e["type"] for e in result.events]
+        print(f"{name} against the peg (radius {args.peg_radius_mm:g} mm, mu {args.mu:g}), {args.duration:g} s, "
+              f"1 kHz, N = 100: CPU {cpu:.2f} s, steps {result.summary['steps']} "
+              f"(rejected {result.summary['rejected_steps']}), status {result.summary['status']}, events "
+              f"{ {k: kinds.count(k) for k in sorted(set(kinds))} }", flush=True)
+    print(f"{len(names)} whisker(s): CPU {total:.2f} s in all, load average {load:.1f} -> {os.getloadavg()[0]:.1f}")
     return 0
 
 
@@ -280,7 +291,7 @@ def main() -> int:
     p.add_argument("--threads", type=int, default=1)
     p.add_argument("--links", type=int, default=0, help="links per whisker (default: the config's, 100)")
     p = sub.add_parser("peg-whisker")
-    p.add_argument("name", help="a whisker of the array, e.g. C1R")
+    p.add_argument("name", help="a whisker of the array, e.g. C1R, or 'all': every whisker, one after the other")
     p.add_argument("--duration", type=float, default=DURATION_S)
     p.add_argument("--peg-radius-mm", type=float, default=1.0, help="WHISKiT's peg: 1 mm")
     p.add_argument("--mu", type=float, default=0.25, help="WHISKiT's: 0.5 x 0.5 (Bullet multiplies frictions)")
