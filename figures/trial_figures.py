@@ -174,7 +174,11 @@ def scatter_fit(x, y, used, fits, labels, title):
     """Fig. 2e/2f/4b: predicted vs measured [mm] with the summary's fit(s) and the identity line; axes span
     the data. `used` marks the points the fit used; the others are drawn as excluded. A fit that is None
     is left out."""
-    fig, ax = plt.subplots(figsize=(0.6 * style.PAPER_WIDTH_IN, 0.6 * style.PAPER_WIDTH_IN + 1.6))
+    # fixed margins (no tight-layout passes): a square axes, the legend (up to seven lines) in the 1.9 in below it
+    width = 0.6 * style.PAPER_WIDTH_IN
+    top = 0.35 + 0.17 * title.count("\n")
+    fig, ax = plt.subplots(figsize=(width, width - 0.85 + top + 1.9))
+    style.fixed_layout(fig, left_in=0.7, right_in=0.15, top_in=top, bottom_in=1.9, legend_in=0.0)
     ok = np.isfinite(x) & np.isfinite(y)
     ax.scatter(x[ok & used], y[ok & used], s=7, alpha=0.45, lw=0, color=style.DATA["color"],
                marker=style.DATA["marker"], label=f"frames in the fit ({int((ok & used).sum())})", gid="used")
@@ -215,7 +219,7 @@ def kinematic_figure(d, summary):
     fit = (summary.get("kinematic_prediction") or {}).get("fit")
     fig, ax = scatter_fit(d["tracked_height"] * style.SCALE["mm"], d["kinematic_height"] * style.SCALE["mm"],
                           d["period"] >= 0, (fit,), ("fit",),
-                          "Fig. 2f: contact height predicted from non-contact kinematics")
+                          "Fig. 2f: contact height predicted\nfrom non-contact kinematics")
     ax.set_xlabel(style.label("tracked contact height", "mm"))
     ax.set_ylabel(style.label("kinematic prediction", "mm"))
     return fig
@@ -256,6 +260,7 @@ def friction_figure(d, summary, window):
     fr = summary.get("friction") or {}
     unit = time_axis(start, end)
     fig, axes = plt.subplots(1, 3, figsize=(style.PAPER_WIDTH_IN, 2.8))
+    style.fixed_layout(fig, left_in=0.6, right_in=0.3, top_in=0.5, bottom_in=0.45, legend_in=0.0, wspace=0.5)
     ax = axes[0]
     ax.plot(t[used] * style.SCALE[unit], mu[used], ls="none", marker="o", ms=2, color=style.OKABE_ITO["blue"],
             label="used")
@@ -319,16 +324,17 @@ def builders(d, summary, window=None, whisk=None):
     """{file name: function drawing that Figure} of every figure the data allow (drawn in parallel by main)."""
     modes = present_modes(d)
     span = select_window(d, window, whisk)
+    # slowest first (save_all's processes take them in this order)
     figs = {
         "fig3b_whisker_signals.png": lambda: time_series(d, modes, WHISKER_ROWS, span, "Fig. 3b: whisker frame"),
         "fig3a_world_signals.png": lambda: time_series(d, modes, WORLD_ROWS, span, "Fig. 3a: world frame"),
-        "fig2bcd_shape_height_arclength.png": lambda: time_series(
-            d, modes, SHAPE_ROWS, span, "Figs. 2b–d: shape error, contact height, arc length of contact"),
     }
     if (d["period"] >= 0).any():
         figs["fig3b_per_whisk.png"] = lambda: per_whisk_figure(d, modes)
     if "mu" in d:
         figs["fig3cde_friction.png"] = lambda: friction_figure(d, summary, span)
+    figs["fig2bcd_shape_height_arclength.png"] = lambda: time_series(
+        d, modes, SHAPE_ROWS, span, "Figs. 2b–d: shape error, contact height, arc length of contact")
     if "z_error" in d:
         figs["fig2e_z_error_eq6.png"] = lambda: z_error_figure(d, summary, "eq6", "Fig. 2e: eq. (6), contact-point mode")
         figs["fig4b_z_error_eq7.png"] = lambda: z_error_figure(d, summary, "eq7", "Fig. 4b: eq. (7), edge mode only")

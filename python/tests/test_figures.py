@@ -186,6 +186,69 @@ def test_pitch_sweep_text_is_at_least_7_pt_for_62_whiskers():
     plt.close(fig)
 
 
+def test_trial_figures_fit_their_fixed_layouts(figs, trial_data):
+    """The trial figures have fixed margins (style.fixed_layout: no tight bounding box when saved, which drew
+    every figure twice), so whatever they draw must lie inside the canvas: titles, labels, legends. Fig. 3c's
+    title also with the longest window description (a trial longer than OVERVIEW_MAX_S)."""
+    style.apply()
+    span = (0.0, 0.5, "t = 10.01–11.01 s (first 1 s of contact)")
+    friction_long = trial_figures.friction_figure(*trial_data, span)
+    for name, fig in list(figs.items()) + [("fig3cde_friction.png, long window", friction_long)]:
+        assert getattr(fig, "vibrissa_fixed_layout", False), name
+        fig.canvas.draw()
+        box = fig.get_tightbbox(fig.canvas.get_renderer())  # inches
+        w, h = fig.get_size_inches()
+        assert box.x0 >= -0.02 and box.y0 >= -0.02 and box.x1 <= w + 0.02 and box.y1 <= h + 0.02, (name, box)
+    plt.close(friction_long)
+
+
+def test_a_fixed_layout_figure_is_drawn_once_when_saved(tmp_path):
+    """savefig(bbox_inches=None) falls back to rcParams["savefig.bbox"]; with "tight" there, a fixed layout
+    was still measured in a first draw. Counted by draw events: one for a fixed layout, two with tight."""
+    style.apply()
+    draws = {}
+    for fixed in (True, False):
+        fig, ax = plt.subplots(figsize=(2, 2))
+        if fixed:
+            style.fixed_layout(fig)
+        ax.plot([0, 1], [0, 1])
+        fig.canvas.mpl_connect("draw_event", lambda _event, key=fixed: draws.update({key: draws.get(key, 0) + 1}))
+        style.save(fig, str(tmp_path / f"fixed_{fixed}.png"))
+    assert draws == {True: 1, False: 2}
+
+
+def test_save_all_draws_every_figure_once_across_processes(tmp_path):
+    """style.save_all's processes share one queue: every figure is drawn exactly once, in a child process; a
+    figure that fails does not stop the others, and save_all then raises."""
+    log = tmp_path / "drawn.txt"
+
+    def drawer(name, fail=False):
+        def draw():
+            with open(log, "a") as f:
+                f.write(f"{name} {os.getpid()}\n")
+            if fail:
+                raise ValueError("this figure fails")
+            fig, _ = plt.subplots(figsize=(1, 1))
+            return style.fixed_layout(fig, left_in=0.1, right_in=0.1, top_in=0.1, bottom_in=0.1, legend_in=0.0)
+        return draw
+
+    style.apply()
+    names = [f"f{k}.png" for k in range(7)]
+    style.save_all({n: drawer(n) for n in names}, str(tmp_path), jobs=3)
+    drawn = [line.split() for line in log.read_text().splitlines()]
+    assert sorted(n for n, _ in drawn) == names
+    assert all(int(pid) != os.getpid() for _, pid in drawn)
+    assert all((tmp_path / n).stat().st_size > 0 for n in names)
+
+    log.unlink()
+    out = tmp_path / "with_failure"
+    with pytest.raises(RuntimeError, match="figures failed"):
+        style.save_all({"bad.png": drawer("bad.png", fail=True), "a.png": drawer("a.png"), "b.png": drawer("b.png")},
+                       str(out), jobs=2)
+    assert sorted(line.split()[0] for line in log.read_text().splitlines()) == ["a.png", "b.png", "bad.png"]
+    assert (out / "a.png").exists() and (out / "b.png").exists() and not (out / "bad.png").exists()
+
+
 def test_units_are_written_properly(figs):
     labels = [ax.get_ylabel() + ax.get_xlabel() for fig in figs.values() for ax in fig.axes]
     assert not any("uN" in s or "N m" in s for s in labels)
