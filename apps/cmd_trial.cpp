@@ -104,6 +104,14 @@ std::string summary_table(const std::vector<SummaryRow>& rows) {
 SummaryRow analyse(const TrialArgs& a, const std::string& trial_path, const std::filesystem::path& out,
                    const trial::TrialRunOptions& run_opts) {
   namespace fs = std::filesystem;
+  // The figure script starts now and waits: Python's start-up overlaps the solve (docs/performance.md).
+  std::unique_ptr<EarlyFigureScript> figure_script;
+  if (!a.no_figures) {
+    std::vector<std::string> args = {(out / "frames.h5").string(), (out / "summary.json").string(),
+                                     (out / io::kTrialFiguresFolder).string()};
+    for (std::string& f : figure_flags(a)) args.push_back(std::move(f));
+    figure_script = std::make_unique<EarlyFigureScript>("trial_figures.py", args);
+  }
   const trial::Trial tr = io::read_trial(trial_path);
   for (const std::string& w : trial::trial_warnings(tr)) std::cerr << "vibrissa trial: warning: " << w << "\n";
   const std::size_t contact = trial::contact_frame_count(tr);
@@ -145,12 +153,9 @@ SummaryRow analyse(const TrialArgs& a, const std::string& trial_path, const std:
     std::cout << "  eq. (6) fit: slope " << analysis.z_error->fit_eq6.all->slope << ", r2 "
               << analysis.z_error->fit_eq6.all->r2 << "\n";
   std::cout << "  results in " << out.string() << "\n";
-  if (!a.no_figures) {
-    const fs::path figures = out / io::kTrialFiguresFolder;
-    fs::create_directories(figures);
-    std::vector<std::string> args = {(out / "frames.h5").string(), (out / "summary.json").string(), figures.string()};
-    for (std::string& f : figure_flags(a)) args.push_back(std::move(f));
-    run_figure_script("trial_figures.py", args);
+  if (figure_script) {
+    fs::create_directories(out / io::kTrialFiguresFolder);
+    figure_script->run();
   }
   return row;
 }

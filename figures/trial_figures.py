@@ -2,6 +2,7 @@
 """Figures of `vibrissa trial` mirroring Huet & Hartmann 2016 Figs. 2b-f, 3a-e and 4b.
 
 usage: trial_figures.py FRAMES.h5 SUMMARY.json OUTDIR [--window START_S,END_S | --whisk N] [--dpi DPI]
+                        [--jobs N] [--start-on-stdin]
 
 Reads the per-frame table written by `vibrissa trial` (frames.h5, one dataset per column) and its
 summary.json. Fit lines and their numbers are those of summary.json (never refitted here). Time series (Figs. 2b-d, 3a, 3b) show a time
@@ -358,7 +359,18 @@ def main(argv=None):
     group.add_argument("--whisk", type=int, help="time series over contact period N (from 1)")
     parser.add_argument("--jobs", type=int, default=0,
                         help="processes drawing figures side by side (default: one per CPU)")
+    parser.add_argument("--start-on-stdin", action="store_true",
+                        help="wait for the line 'go' on standard input before reading the data (anything else, "
+                             "or the end of input, exits drawing nothing): `vibrissa trial` starts this script "
+                             "before it solves, so that Python's start-up and imports overlap the solve")
     args = parser.parse_args(argv)
+    if args.start_on_stdin:
+        try:
+            go = sys.stdin.readline().strip() == "go"
+        except KeyboardInterrupt:  # Ctrl-C while vibrissa trial was solving: it reports the interruption
+            sys.exit(130)
+        if not go:
+            return
     style.apply()
     d = load(args.frames_h5)
     with open(args.summary_json) as f:

@@ -249,6 +249,36 @@ def test_save_all_draws_every_figure_once_across_processes(tmp_path):
     assert (out / "a.png").exists() and (out / "b.png").exists() and not (out / "bad.png").exists()
 
 
+@pytest.mark.parametrize("line", ["go\n", "", "stop\n"])
+def test_trial_figures_started_early_draw_only_on_go(trial_files, tmp_path, line):
+    """`vibrissa trial` starts trial_figures.py --start-on-stdin before solving: it draws once told "go", and
+    exits drawing nothing (status 0) at the end of input or any other line (the analysis failed)."""
+    out = tmp_path / "figures"
+    done = subprocess.run([sys.executable, os.path.join(FIGURES, "trial_figures.py"), str(trial_files / "frames.h5"),
+                           str(trial_files / "summary.json"), str(out), "--start-on-stdin"],
+                          input=line, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    drawn = sorted(os.listdir(out)) if out.exists() else []
+    if line == "go\n":
+        assert drawn == sorted(trial_figures.builders(*trial_figures_data(trial_files)))
+    else:
+        assert drawn == []
+
+
+def trial_figures_data(trial_files):
+    return trial_figures.load(trial_files / "frames.h5"), json.loads((trial_files / "summary.json").read_text())
+
+
+def test_cli_trial_that_fails_draws_no_figures(cli, tmp_path):
+    """The figure script started ahead of the solve exits quietly when the trial cannot be analysed."""
+    trial = tmp_path / "t.csv"
+    trial.write_text("time,theta\n0,0\n")
+    done = subprocess.run([cli, "trial", trial, "--out", tmp_path / "r"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1 and "vibrissa-trial" in done.stderr
+    assert "Traceback" not in done.stderr and "figure script" not in done.stderr
+    assert not (tmp_path / "r" / "figures").exists()
+
+
 def test_units_are_written_properly(figs):
     labels = [ax.get_ylabel() + ax.get_xlabel() for fig in figs.values() for ax in fig.axes]
     assert not any("uN" in s or "N m" in s for s in labels)
