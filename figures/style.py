@@ -6,6 +6,7 @@ colour blindness; every series that shares an axis with another also differs in 
 so the figures stay readable in greyscale print. Data are SI inside; SCALE and UNIT convert for display.
 """
 import argparse
+import gc
 import os
 
 import matplotlib
@@ -232,6 +233,10 @@ def save_all(drawers, outdir, dpi=DEFAULT_DPI, jobs=0):
         for name in names:
             save(drawers[name](), os.path.join(outdir, name), dpi=dpi)
         return
+    # The parent's objects (modules, data) go to the collector's permanent generation: the children neither
+    # scan them nor, by touching their headers, copy the pages they share with the parent. The children then
+    # run without the collector (~8 % of their CPU): they are short-lived and each figure is closed.
+    gc.freeze()
     queue, feed = os.pipe()
     os.write(feed, bytes(range(len(names))))  # far below the pipe's buffer: never blocks
     os.close(feed)
@@ -240,6 +245,7 @@ def save_all(drawers, outdir, dpi=DEFAULT_DPI, jobs=0):
         pid = os.fork()
         if pid == 0:  # child: draw figures off the queue, then leave without running the parent's cleanups
             code = 0
+            gc.disable()
             try:
                 while taken := os.read(queue, 1):
                     name = names[taken[0]]
@@ -254,6 +260,7 @@ def save_all(drawers, outdir, dpi=DEFAULT_DPI, jobs=0):
             os._exit(code)
         children.append(pid)
     os.close(queue)
+    gc.unfreeze()
     failed = [pid for pid in children if os.waitpid(pid, 0)[1] != 0]
     if failed:
         raise RuntimeError(f"figures failed in {len(failed)} of {jobs} figure processes")
