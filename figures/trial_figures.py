@@ -2,13 +2,14 @@
 """Figures of `vibrissa trial` mirroring Huet & Hartmann 2016 Figs. 2b-f, 3a-e and 4b.
 
 usage: trial_figures.py FRAMES.h5 SUMMARY.json OUTDIR [--window START_S,END_S | --whisk N] [--dpi DPI]
-                        [--jobs N] [--start-on-stdin]
+                        [--all] [--jobs N] [--start-on-stdin]
 
 Reads the per-frame table written by `vibrissa trial` (frames.h5, one dataset per column) and its
 summary.json. Fit lines and their numbers are those of summary.json (never refitted here). Time series (Figs. 2b-d, 3a, 3b) show a time
 window: --window START_S,END_S (seconds, trial clock), --whisk N (contact period N, from 1), or by default the
 whole trial if it lasts at most OVERVIEW_MAX_S, else WINDOW_S from the first contact. fig3b_per_whisk.png
 overlays every whisk of the trial, aligned at contact onset. F_D and M_D are unwrapped within each whisk.
+fig3a_world_signals.png and fig2bcd_shape_height_arclength.png are drawn with --all only (EXTRA_FIGURES).
 """
 import json
 import os
@@ -322,8 +323,15 @@ def friction_figure(d, summary, window):
     return fig
 
 
-def builders(d, summary, window=None, whisk=None):
-    """{file name: function drawing that Figure} of every figure the data allow (drawn in parallel by main)."""
+# Drawn only when asked for (`vibrissa trial --all-figures`, `--all` here, TrialResult.figures(all_figures=True)):
+# the world-frame signals and the shape/height/arc-length series, two of the three slowest figures, so that the
+# default set is drawn in about the time the trial takes to analyse (docs/performance.md).
+EXTRA_FIGURES = ("fig3a_world_signals.png", "fig2bcd_shape_height_arclength.png")
+
+
+def builders(d, summary, window=None, whisk=None, all_figures=True):
+    """{file name: function drawing that Figure} of every figure the data allow (drawn in parallel by main);
+    without `all_figures`, those of EXTRA_FIGURES are left out."""
     modes = present_modes(d)
     span = select_window(d, window, whisk)
     # slowest first (save_all's processes take them in this order)
@@ -342,6 +350,8 @@ def builders(d, summary, window=None, whisk=None):
         figs["fig4b_z_error_eq7.png"] = lambda: z_error_figure(d, summary, "eq7", "Fig. 4b: eq. (7), edge mode only")
     if "tracked_height" in d and np.isfinite(d["kinematic_height"]).any():
         figs["fig2f_kinematic_prediction.png"] = lambda: kinematic_figure(d, summary)
+    if not all_figures:
+        figs = {name: draw for name, draw in figs.items() if name not in EXTRA_FIGURES}
     return figs
 
 
@@ -360,6 +370,8 @@ def main(argv=None):
     group.add_argument("--whisk", type=int, help="time series over contact period N (from 1)")
     parser.add_argument("--jobs", type=int, default=0,
                         help="processes drawing figures side by side (default: one per CPU)")
+    parser.add_argument("--all", action="store_true",
+                        help="also draw " + " and ".join(EXTRA_FIGURES) + " (left out by default: slower)")
     parser.add_argument("--start-on-stdin", action="store_true",
                         help="wait for the line 'go' on standard input before reading the data (anything else, "
                              "or the end of input, exits drawing nothing): `vibrissa trial` starts this script "
@@ -377,7 +389,7 @@ def main(argv=None):
     d = load(args.frames_h5)
     with open(args.summary_json) as f:
         summary = json.load(f)
-    style.save_all(builders(d, summary, args.window, args.whisk), args.outdir, dpi=args.dpi, jobs=args.jobs)
+    style.save_all(builders(d, summary, args.window, args.whisk, all_figures=args.all), args.outdir, dpi=args.dpi, jobs=args.jobs)
 
 
 if __name__ == "__main__":

@@ -259,8 +259,8 @@ def test_trial_figures_started_early_draw_only_on_go(trial_files, tmp_path, line
                           input=line, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     drawn = sorted(os.listdir(out)) if out.exists() else []
-    if line == "go\n":
-        assert drawn == sorted(trial_figures.builders(*trial_figures_data(trial_files)))
+    if line == "go\n":  # the default set
+        assert drawn == sorted(trial_figures.builders(*trial_figures_data(trial_files), all_figures=False))
     else:
         assert drawn == []
 
@@ -332,6 +332,13 @@ def test_cli_trial_window_flags(cli, tmp_path):
     png = tmp_path / "r" / "figures" / "fig3b_whisker_signals.png"
     width = int.from_bytes(png.read_bytes()[16:20], "big")
     assert width < 7.5 * 60  # drawn at the requested dpi (7 in wide)
+    # the default set leaves out the extra figures; --all-figures draws them too
+    drawn = {p.name for p in (tmp_path / "r" / "figures").glob("*.png")}
+    assert len(drawn) == 6 and not drawn & set(trial_figures.EXTRA_FIGURES)
+    done = subprocess.run([cli, "trial", trial, "--all-figures", "--figure-dpi", "60", "--out", tmp_path / "r"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0 and "failed" not in done.stderr, done.stderr
+    assert {p.name for p in (tmp_path / "r" / "figures").glob("*.png")} == drawn | set(trial_figures.EXTRA_FIGURES)
 
 
 def luminance(hex_colour):
