@@ -205,21 +205,6 @@ def one_png_main(doc, load, build, argv=None):
     print("wrote", args.out)
 
 
-def warm_up():
-    """Draws a small throw-away figure with the texts the figures use (fonts, mathtext, a legend, a PNG), so
-    that matplotlib's font files, parser and caches are loaded once, before save_all forks: each process then
-    starts warm (~0.05-0.1 s of CPU less each). `vibrissa trial` does this while it is still solving."""
-    fig, ax = plt.subplots(figsize=(2, 2))
-    fixed_layout(fig)
-    ax.plot([0, 1], [0, 1], label="a")
-    ax.set_ylabel(label("$F_x$", "µN·m"))
-    ax.set_title("μ")
-    fig.suptitle("—")
-    ax.legend()
-    fig.canvas.draw()
-    plt.close(fig)
-
-
 def save_all(drawers, outdir, dpi=DEFAULT_DPI, jobs=0):
     """Draws and saves {file name: function returning a Figure} in `outdir`, in `jobs` processes side by side
     (0: one per CPU). The processes are forked after the data and matplotlib are loaded, so each starts at

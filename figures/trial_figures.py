@@ -67,20 +67,28 @@ def angle_mask(d, prefix, name):
     return ok
 
 
+def mode_signals(d, modes, name, unit):
+    """{mode prefix: column `name` of that mode in display units} for the modes that have it; angles masked
+    where undefined (angle_mask), unwrapped per contact period, the modes after the first one drawn on the
+    first one's branch (its unwrapped angles computed once, as the reference of the others)."""
+    out, ref = {}, None
+    for m in modes:
+        column = m["prefix"] + name
+        if column not in d:
+            continue
+        if name not in ANGLES:
+            out[m["prefix"]] = d[column] * style.SCALE[unit]
+            continue
+        masked = np.where(angle_mask(d, m["prefix"], name), np.degrees(d[column]), np.nan)
+        out[m["prefix"]] = style.unwrap_deg(masked, d["period"], reference=ref)
+        if m is modes[0]:
+            ref = out[m["prefix"]]
+    return out
+
+
 def signal(d, modes, mode, name, unit):
-    """Column `name` of `mode` in display units; angles masked where undefined (angle_mask), unwrapped per
-    contact period, the modes after the first one drawn on the first one's branch."""
-    v = d[mode["prefix"] + name]
-    if name not in ANGLES:
-        return v * style.SCALE[unit]
-
-    def masked(m):
-        return np.where(angle_mask(d, m["prefix"], name), np.degrees(d[m["prefix"] + name]), np.nan)
-
-    ref = None
-    if mode is not modes[0]:
-        ref = style.unwrap_deg(masked(modes[0]), d["period"])
-    return style.unwrap_deg(masked(mode), d["period"], reference=ref)
+    """mode_signals of one mode (drawn on the branch of modes[0])."""
+    return mode_signals(d, [mode] if mode is modes[0] else [modes[0], mode], name, unit)[mode["prefix"]]
 
 
 # --- time windows ---------------------------------------------------------------------------------------
@@ -137,9 +145,10 @@ def time_series(d, modes, rows, window, title):
     style.fixed_layout(fig, top_in=0.55 if any(name in ANGLES for name, _, _ in rows) else 0.4, hspace=0.18)
     for ax, (name, u, quantity) in zip(axes, rows):
         drawn = False
+        ys = mode_signals(d, modes, name, u)
         for m in modes:
-            if m["prefix"] + name in d:
-                y = signal(d, modes, m, name, u)[sel]
+            if m["prefix"] in ys:
+                y = ys[m["prefix"]][sel]
                 ax.plot(t, y, **style.mode_line(m))
                 drawn |= bool(np.isfinite(y).any())
         if not drawn:
@@ -237,8 +246,9 @@ def per_whisk_figure(d, modes):
     alpha = float(np.clip(6.0 / max(periods, 1), 0.12, 0.8))
     starts = [np.flatnonzero(d["period"] == p) for p in range(periods)]
     for ax, (name, unit, quantity) in zip(axes, OVERLAY_ROWS):
+        vs = mode_signals(d, modes, name, unit)
         for m in modes:
-            v = signal(d, modes, m, name, unit)
+            v = vs[m["prefix"]]
             # one LineCollection per mode and panel (not a Line2D per whisk): drawn in one pass
             segments = [np.column_stack([(d["time"][idx] - d["time"][idx[0]]) * style.SCALE["ms"], v[idx]])
                         for idx in starts if idx.size]
@@ -378,7 +388,6 @@ def main(argv=None):
                              "before it solves, so that Python's start-up and imports overlap the solve")
     args = parser.parse_args(argv)
     style.apply()
-    style.warm_up()
     if args.start_on_stdin:
         try:
             go = sys.stdin.readline().strip() == "go"
