@@ -35,6 +35,7 @@ WHISKER_ROWS = (("Fx_B", "mN", "$F_x$"), ("FT", "mN", "$F_T$"), ("FD", "deg", "$
 OVERLAY_ROWS = (("FT", "mN", "$F_T$"), ("MB", "µN·m", "$M_B$"), ("FD", "deg", "$F_D$"),
                 ("MD", "deg", "$M_D$"))
 ANGLES = ("FD", "MD")  # [rad] in frames.h5, drawn in degrees
+TITLE_MAX_CHARS = 90  # of a 9 pt title line across a figure 7 in wide
 
 
 def load(path):
@@ -142,7 +143,11 @@ def time_series(d, modes, rows, window, title):
     sel = (d["time"] >= start) & (d["time"] <= end)
     t = d["time"][sel] * style.SCALE[unit]
     fig, axes = plt.subplots(len(rows), 1, figsize=(style.PAPER_WIDTH_IN, 1.45 * len(rows) + 0.9), sharex=True)
-    style.fixed_layout(fig, top_in=0.55 if any(name in ANGLES for name, _, _ in rows) else 0.4, hspace=0.18)
+    # the title's lines: title and span (on two lines when one would not fit 7 in), and the note on masked angles
+    lines = [f"{title} — {what}"] if len(title) + len(what) <= TITLE_MAX_CHARS else [title, what]
+    if any(name in ANGLES for name, _, _ in rows):
+        lines.append(f"({ANGLE_MASK_NOTE})")
+    style.fixed_layout(fig, top_in=0.2 + 0.17 * len(lines), hspace=0.18)
     for ax, (name, u, quantity) in zip(axes, rows):
         drawn = False
         ys = mode_signals(d, modes, name, u)
@@ -159,10 +164,7 @@ def time_series(d, modes, rows, window, title):
         ax.set_ylabel(style.label(quantity, u))
     axes[-1].set_xlabel(style.label("time", unit))
     axes[-1].set_xlim(start * style.SCALE[unit], end * style.SCALE[unit])
-    if any(name in ANGLES for name, _, _ in rows):
-        fig.suptitle(f"{title} — {what}\n({ANGLE_MASK_NOTE})", fontsize=9)
-    else:
-        fig.suptitle(f"{title} — {what}")
+    fig.suptitle("\n".join(lines), fontsize=9)
     mode_legend(fig, modes)
     return fig
 

@@ -191,15 +191,21 @@ def test_trial_figures_fit_their_fixed_layouts(figs, trial_data):
     every figure twice), so whatever they draw must lie inside the canvas: titles, labels, legends. Fig. 3c's
     title also with the longest window description (a trial longer than OVERVIEW_MAX_S)."""
     style.apply()
+    d, summary = trial_data
+    modes = trial_figures.present_modes(d)
     span = (0.0, 0.5, "t = 10.01–11.01 s (first 1 s of contact)")
-    friction_long = trial_figures.friction_figure(*trial_data, span)
-    for name, fig in list(figs.items()) + [("fig3cde_friction.png, long window", friction_long)]:
+    long_titles = [("fig3cde_friction.png, long window", trial_figures.friction_figure(d, summary, span))]
+    for rows, title in ((trial_figures.SHAPE_ROWS, "Figs. 2b–d: shape error, contact height, arc length of contact"),
+                        (trial_figures.WHISKER_ROWS, "Fig. 3b: whisker frame")):
+        long_titles.append((f"{title}, long window", trial_figures.time_series(d, modes, rows, span, title)))
+    for name, fig in list(figs.items()) + long_titles:
         assert getattr(fig, "vibrissa_fixed_layout", False), name
         fig.canvas.draw()
         box = fig.get_tightbbox(fig.canvas.get_renderer())  # inches
         w, h = fig.get_size_inches()
         assert box.x0 >= -0.02 and box.y0 >= -0.02 and box.x1 <= w + 0.02 and box.y1 <= h + 0.02, (name, box)
-    plt.close(friction_long)
+    for _, fig in long_titles:
+        plt.close(fig)
 
 
 def test_a_fixed_layout_figure_is_drawn_once_when_saved(tmp_path):
