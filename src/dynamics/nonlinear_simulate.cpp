@@ -14,6 +14,7 @@
 // solved by Newton's method on the stage's modal rates; the contacts make the Newton matrix diag + a rank-3 term
 // per contact (Woodbury). Step-doubling error control as in the linear path.
 #include "nonlinear_simulate.hpp"
+#include "step_control.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -318,52 +319,25 @@ class Integrator {
     ts.contacts.assign(objects_.size(), ContactChannels{});
     record(ts, 0, 0.0, y);
 
-    const double max_step = opt_.max_step > 0.0 ? opt_.max_step : 1.0 / opt_.output_rate;
-    double t = 0.0, h_next = std::min(max_step, 1e-5);
     double scale = energy_norm(y.eta, y.rate);
     State full, mid, half;
-    for (long f = 1; f < frames; ++f) {
-      const double t_out = static_cast<double>(f) / opt_.output_rate;
-      while (t < t_out) {
-        if (ts.steps + ts.rejected_steps >= opt_.max_steps) {
-          ts.status = SimulationStatus::max_steps;
-          return ts;
-        }
-        double h = h_next;
-        const bool last = t + 1.01 * h >= t_out;
-        if (last) h = t_out - t;
-        const double tol =
-            opt_.relative_tolerance * std::max(scale, energy_norm(y.eta, y.rate)) + opt_.absolute_tolerance;
-        const bool ok = step(t, h, y, tol, full) && step(t, 0.5 * h, y, tol, mid) &&
-                        step(t + 0.5 * h, 0.5 * h, mid, tol, half);
-        double factor = 0.25;
-        bool accept = false;
-        if (ok) {
-          const double err = energy_norm(half.eta - full.eta, half.rate - full.rate) / 3.0;
-          factor = err > 0.0 ? std::clamp(0.9 * std::cbrt(tol / err), 0.2, 4.0) : 4.0;
-          accept = err <= tol;
-        }
-        if (accept) {
+    integrate_with_step_control(
+        opt_, frames, ts,
+        [&](double t, double h) {
+          const double tol =
+              opt_.relative_tolerance * std::max(scale, energy_norm(y.eta, y.rate)) + opt_.absolute_tolerance;
+          if (!(step(t, h, y, tol, full) && step(t, 0.5 * h, y, tol, mid) &&
+                step(t + 0.5 * h, 0.5 * h, mid, tol, half)))
+            return StepAttempt{false, 0.0, tol};
+          return StepAttempt{true, energy_norm(half.eta - full.eta, half.rate - full.rate) / 3.0, tol};
+        },
+        [&](double t, double h) {
           note_events(ts, t, 0.5 * h, y, mid);
           note_events(ts, t + 0.5 * h, 0.5 * h, mid, half);
           y = half;
-          t = last ? t_out : t + h;
-          ++ts.steps;
-          ts.smallest_step = ts.steps == 1 ? h : std::min(ts.smallest_step, h);
-          ts.largest_step = std::max(ts.largest_step, h);
           scale = std::max(scale, energy_norm(y.eta, y.rate));
-          if (!(last && h < h_next)) h_next = std::min(h * factor, max_step);
-        } else {
-          ++ts.rejected_steps;
-          h_next = h * factor;
-          if (h_next < 1e-14 * std::max(1.0, t_out)) {
-            ts.status = SimulationStatus::step_too_small;
-            return ts;
-          }
-        }
-      }
-      record(ts, f, t_out, y);
-    }
+        },
+        [&](long f, double t_out) { record(ts, f, t_out, y); });
     return ts;
   }
 
