@@ -100,7 +100,6 @@ class Integrator {
     const Eigen::Matrix3d& R = f.base.R_WB;
     const auto& radii = w_.node_radii();
     const auto& arc = w_.node_arc_lengths();
-    bool rate_ready = false;
     for (std::size_t o = 0; o < objects_.size(); ++o) {
       const LineObstacle& ob = objects_[o];
       const Eigen::Vector3d c_B = R.transpose() * (ob.point_W - f.base.p_W_base);
@@ -153,22 +152,17 @@ class Integrator {
       const Eigen::Vector3d rel = cv.x_B - c_B;
       Eigen::Vector3d n = dist > 0.0 ? Eigen::Vector3d(best_r / dist) : Eigen::Vector3d(best_t.cross(e_B).normalized());
       if (crossed) n = -n;
-      if (!rate_ready) {
-        q_dot_.noalias() = Phi_ * rate;
-        rate_ready = true;
-      }
-      Eigen::Vector3d v_B = R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B));
+      const Eigen::Index joints = 3 * (cv.link + 1);
+      Jt_.resize(joints, 3);  // J^T, joints <= link
       for (int j = 0; j <= cv.link; ++j) {
         const std::size_t u = static_cast<std::size_t>(j);
-        v_B += (kin_.joint_axes_B[u] * q_dot_.segment<3>(3 * j)).cross(cv.x_B - kin_.nodes_B[u]);
+        Jt_.middleRows<3>(3 * j) = kin_.joint_axes_B[u].transpose() * skew(cv.x_B - kin_.nodes_B[u]);
       }
-      Eigen::MatrixXd Jt = Eigen::MatrixXd::Zero(3 * (cv.link + 1), 3);  // J^T, joints <= link
-      for (int j = 0; j <= cv.link; ++j) {
-        const std::size_t u = static_cast<std::size_t>(j);
-        Jt.block<3, 3>(3 * j, 0) = kin_.joint_axes_B[u].transpose() * skew(cv.x_B - kin_.nodes_B[u]);
-      }
-      Eigen::MatrixXd Ui(m_, 3);  // Phi^T J^T (a coefficient-wise product: 3 columns)
-      Ui.noalias() = Phi_.topRows(3 * (cv.link + 1)).transpose().lazyProduct(Jt);
+      Eigen::MatrixXd Ui(m_, 3);  // Phi^T J^T: three matrix-vector products with the first 3 (link + 1) rows of Phi
+      for (Eigen::Index k = 0; k < 3; ++k) Ui.col(k).noalias() = Phi_.topRows(joints).transpose() * Jt_.col(k);
+      // The contact point's velocity in B: the base's, plus J q' = (Phi^T J^T)^T eta'.
+      const Eigen::Vector3d v_B =
+          R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + Ui.transpose() * rate;
       // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n.
       const double inv_mass = (Ui * n).squaredNorm();
       const double cn = 2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / std::max(inv_mass, 1e-300));
@@ -421,7 +415,8 @@ class Integrator {
   Eigen::Index m_ = 0;
   double kn_ = 0.0, kt_ = 0.0;
   std::vector<LineObstacle> objects_;
-  Eigen::VectorXd q_, q_dot_;
+  Eigen::VectorXd q_;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> Jt_;
   ChainKinematics kin_;
 };
 
