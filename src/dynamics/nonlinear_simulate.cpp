@@ -290,16 +290,38 @@ class Integrator {
   /// One TR-BDF2 step of length h from (t, y) into `out`; `err`: the embedded estimate of its local error (energy
   /// norm). Returns false when a stage's Newton iteration does not converge.
   bool step(double t, double h, const State& y, double tol, State& out, double& err) {
+    if (!step_from(t, h, y, y.contact_force, tol, out, err)) return false;
+    // A contact that begins within the step: its damper's force jumps from zero at the touch (F_n = c_n |g'| at
+    // g = 0), a jump of f that the explicit first stage would see at the step's end only (and the error estimate
+    // would shrink the step around it without end). The step is taken again with f at its start from the contact
+    // law continued across g = 0 (the contacts of the step's end held on), as the implicit stages see it.
+    std::vector<ContactState> held(objects_.size(), ContactState::none);
+    bool touched = false;
+    for (std::size_t o = 0; o < objects_.size(); ++o) {
+      const ContactState before = y.contacts[o].state, after = out.contacts[o].state;
+      touched = touched || (before == ContactState::none && after != ContactState::none);
+      held[o] = before != ContactState::none ? before : after;
+    }
+    if (!touched) return true;
+    std::vector<ContactValue> start;
+    Eigen::VectorXd start_force;
+    evaluate_contacts(frame(t), y.eta, y.rate, y.contacts, start, start_force, nullptr, &held);
+    return step_from(t, h, y, start_force, tol, out, err);
+  }
+
+  /// The step from (t, y) with `start_force` the modal contact force in f at its start.
+  bool step_from(double t, double h, const State& y, const Eigen::VectorXd& start_force, double tol, State& out,
+                 double& err) {
     const double g = d_trbdf2 * h;
     // f at the step's start from its state (first same as last: the contact force of the last stage's final
     // evaluation).
     const Eigen::VectorXd f1_eta = y.rate;
-    const Eigen::VectorXd f1_rate = frame(t).modal_input + y.contact_force - c_.cwiseProduct(y.rate) -
+    const Eigen::VectorXd f1_rate = frame(t).modal_input + start_force - c_.cwiseProduct(y.rate) -
                                     k_.cwiseProduct(y.eta);
     // Stage 2 (the trapezoidal rule to t + 2 d h): Y2 = y + g f1 + g f(Y2).
     const Eigen::VectorXd A2_eta = y.eta + g * f1_eta, A2_rate = y.rate + g * f1_rate;
     State Y2;
-    if (!stage(frame(t + 2.0 * g), g, A2_eta, A2_rate, y.contacts, y.contact_force, tol, Y2)) return false;
+    if (!stage(frame(t + 2.0 * g), g, A2_eta, A2_rate, y.contacts, start_force, tol, Y2)) return false;
     const Eigen::VectorXd f2_eta = (Y2.eta - A2_eta) / g, f2_rate = (Y2.rate - A2_rate) / g;
     // Stage 3 (BDF2 to t + h): Y3 = y + w h (f1 + f2) + g f(Y3).
     const Eigen::VectorXd A3_eta = y.eta + (w_trbdf2 * h) * (f1_eta + f2_eta);
