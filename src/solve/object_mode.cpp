@@ -231,7 +231,7 @@ ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const Objec
     iterations += held.lm.iterations;
     if (held.status != Status::converged) break;
     u = held.lm.u;
-    deflected_shape(w, Placement{}, held.state, nodes);
+    deflected_nodes(w, g, Placement{}, held.state, nodes);
     const Clearance c = local ? nearest_about(placed, w, nodes, g.thickness, held.state.arc_length)
                               : clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none);
     const double s_next = std::clamp(c.arc_length, 1e-6 * sc.length, sc.length) / sc.length;
@@ -372,7 +372,7 @@ ObjectAttempt attempt_on_features(const Whisker& w, const Scales& sc, const Obje
   return failed;
 }
 
-ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
+ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                                    std::optional<double> hint, const SolveOptions& options, const LoadState* warm) {
   ObjectOutcome out;
   std::optional<DeepestPoint> deepest;
@@ -503,7 +503,8 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
     return off;
   }
   Solution out;
-  fill_solution(w, X, a.state, options, std::nullopt, out);
+  const ContactKinematics<double> k = kinematics_at(w, g, a.state);
+  fill_solution(w, X, a.state, options, std::nullopt, out, nullptr, &k);
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * w.length();
   if (a.status != Status::converged) {
@@ -532,7 +533,7 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
   }
   if (out.status == Status::converged) {  // nowhere else inside the object
     std::vector<Eigen::Vector3d> nodes;
-    deflected_shape(w, X, a.state, nodes);
+    deflected_nodes(w, g, X, a.state, nodes);
     const std::vector<double> none;
     const PlacedShape placed{object.shape, object.X_WO};
     const Clearance c = clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none,
