@@ -396,12 +396,14 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, const Obj
     sigma = core_side(g, w.rest_point_B(d.arc_length),
                       w.rest_link_frames_B()[static_cast<std::size_t>(std::clamp(k, 0, w.links() - 1))].col(0));
   };
+  LoadState start;  // warm: the load the first attempt starts at (its walk made once, for it and the checks)
   if (warm) {
     tip = is_tip(w, warm->arc_length);
     u0 = tip ? Eigen::Vector3d(warm->force_x, warm->force_y, warm->force_z) / sc.force
              : Eigen::Vector3d(warm->force_y / sc.force, warm->force_z / sc.force, warm->arc_length / sc.length);
+    start = tip ? *warm : start_side_load(w, sc, g, law, u0);
     if (g.core_B) {  // the side of the line core the warm contact is on
-      const ObjectContactPoint p = contact_point_at(w, g, *warm, tip, 1.0);
+      const ObjectContactPoint p = contact_point_at(w, g, start, tip, 1.0);
       sigma = core_side(g, p.c_B, p.t_B);
     }
   } else {
@@ -421,7 +423,7 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, const Obj
   WarmAttempt first;
   SolveOptions first_options = options;
   if (warm) {
-    first = {true, lowest_piece(w, g, *warm)};
+    first = {true, lowest_piece(w, g, start)};
     // On an object with creases (a mesh, a box) a warm attempt that does not converge within a few Newton steps
     // has stalled at a crease's band: the sliding attempt below crosses it (docs/objects.md, "Speed").
     if (g.shape->needs_thickness()) first_options.max_iterations = std::min(options.max_iterations, warm_creased_iterations);

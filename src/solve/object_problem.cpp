@@ -132,6 +132,16 @@ bool pieces_apply(const Whisker& w, const ObjectGeometryB& g) {
   return w.properties().scheme != Scheme::paper && !(g.core_B && g.core_B->radius == 0.0 && !g.thickness);
 }
 
+/// The walk's inputs of a side contact at scaled unknowns u (force and couple in the load frame, s, and r(s)).
+template <class S>
+void side_walk_inputs(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                      const std::array<S, 3>& u, V3<S>& F_L, V3<S>& C_L, S& s, S& r, double& slope) {
+  s = sc.length * u[2];
+  slope = 0.0;
+  r = g.thickness ? radius_at(w, s, slope) : S(0.0);
+  side_load(law, g.thickness, S(sc.force * u[0]), S(sc.force * u[1]), r, slope, F_L, C_L);
+}
+
 LMBounds side_bounds() {
   LMBounds b;
   b.lower[2] = 1e-9;
@@ -160,7 +170,18 @@ ContactKinematics<S> walk_deflected(const Whisker& w, const ObjectGeometryB& g, 
     d.follow = follow;
     return d.k;
   } else {
+    const std::array<Dual<3>, 7> input{F_L.x, F_L.y, F_L.z, C_L.x, C_L.y, C_L.z, s};
+    auto same = [](const std::array<Dual<3>, 7>& a, const std::array<Dual<3>, 7>& b) {
+      for (std::size_t i = 0; i < 7; ++i)
+        if (a[i].v != b[i].v || a[i].d != b[i].d) return false;
+      return true;
+    };
+    if (g.last_jacobian && same(g.last_jacobian->input, input)) {
+      follow = g.last_jacobian->follow;
+      return g.last_jacobian->k;
+    }
     const ContactKinematics<S> k = deflect_for_solve<S>(w, F_L, C_L, s, follow);
+    g.last_jacobian = ObjectGeometryB::DeflectedJacobian{input, k, follow};
     if (!g.last_deflected) g.last_deflected.emplace();
     ObjectGeometryB::Deflected& d = *g.last_deflected;
     auto v = [](const V3<S>& x) { return V3<double>(value_of(x.x), value_of(x.y), value_of(x.z)); };
@@ -176,6 +197,29 @@ template ContactKinematics<double> walk_deflected<double>(const Whisker&, const 
 template ContactKinematics<Dual<3>> walk_deflected<Dual<3>>(const Whisker&, const ObjectGeometryB&,
                                                             const V3<Dual<3>>&, const V3<Dual<3>>&, const Dual<3>&,
                                                             FollowerVectors<Dual<3>>&);
+
+LoadState start_side_load(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                          const Eigen::Vector3d& u0) {
+  using D = Dual<3>;
+  const LMBounds b = side_bounds();
+  const Eigen::Vector3d u = u0.cwiseMax(b.lower).cwiseMin(b.upper);  // as newton_line_search() starts
+  const std::array<D, 3> x = {D::variable(u[0], 0), D::variable(u[1], 1), D::variable(u[2], 2)};
+  V3<D> F_L, C_L;
+  D s, r;
+  double slope;
+  side_walk_inputs<D>(w, sc, g, law, x, F_L, C_L, s, r, slope);
+  FollowerVectors<D> follow{V3<D>(D(1.0), D(0.0), D(0.0)), V3<D>(D(0.0), D(1.0), D(0.0))};
+  (void)walk_deflected<D>(w, g, F_L, C_L, s, follow);
+  LoadState state;
+  state.force_x = F_L.x.v;
+  state.force_y = F_L.y.v;
+  state.force_z = F_L.z.v;
+  state.couple_x = C_L.x.v;
+  state.couple_y = C_L.y.v;
+  state.couple_z = C_L.z.v;
+  state.arc_length = s.v;
+  return state;
+}
 
 ContactKinematics<double> kinematics_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state) {
   return deflected_at(w, g, state).k;
@@ -234,11 +278,10 @@ ObjectAttempt attempt_side(const Whisker& w, const Scales& sc, const ObjectGeome
   if (g.core_B) normal_basis(g.core_B->direction, e1, e2);  // as edge mode (edge_problem.cpp)
   auto residual = [&](const auto& u) {
     using S = std::decay_t<decltype(u[0])>;
-    const S s = sc.length * u[2];
-    double slope = 0.0;
-    const S r = g.thickness ? radius_at(w, s, slope) : S(0.0);
+    S s, r;
+    double slope;
     V3<S> F_L, C_L;
-    side_load(law, g.thickness, S(sc.force * u[0]), S(sc.force * u[1]), r, slope, F_L, C_L);
+    side_walk_inputs<S>(w, sc, g, law, u, F_L, C_L, s, r, slope);
     FollowerVectors<S> follow{V3<S>(S(1.0), S(0.0), S(0.0)), V3<S>(S(0.0), S(1.0), S(0.0))};
     const auto k = walk_deflected<S>(w, g, F_L, C_L, s, follow);
     const V3<S>& c = k.p_contact_B;

@@ -41,6 +41,14 @@ struct ObjectGeometryB {
     std::vector<Eigen::Vector3d> omega;  ///< the joint rotations (second-order scheme; empty: not recorded)
   };
   mutable std::optional<Deflected> last_deflected;
+  /// The last walk with derivatives, keyed by its inputs (values and derivatives): a warm start makes its first
+  /// one early (start_side_load) and the attempt's first evaluation takes it from here.
+  struct DeflectedJacobian {
+    std::array<Dual<3>, 7> input;  ///< force, couple, s
+    ContactKinematics<Dual<3>> k;
+    FollowerVectors<Dual<3>> follow;
+  };
+  mutable std::optional<DeflectedJacobian> last_jacobian;
   /// The shape's query at c_B (B frame).
   [[nodiscard]] SurfacePoint query(const Eigen::Vector3d& c_B) const;
 };
@@ -88,6 +96,10 @@ ObjectAttempt attempt_side(const Whisker& w, const Scales& sc, const ObjectGeome
                            double sigma, const Eigen::Vector3d& u0, const SolveOptions& options,
                            ClearancePiece piece = ClearancePiece::centre,
                            std::optional<double> pinned = std::nullopt);
+/// The load at which attempt_side() from u0 evaluates first, with that evaluation made now and recorded in g (its
+/// walk with derivatives, and its values for the checks at that load: lowest_piece, contact_point_at).
+LoadState start_side_load(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                          const Eigen::Vector3d& u0);
 /// The tip contact's equations from scaled unknowns u0 = (F_x, F_y, F_z) / force scale.
 ObjectAttempt attempt_tip(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                           const Eigen::Vector3d& u0, const SolveOptions& options,
