@@ -161,7 +161,7 @@ ContactKinematics<S> walk_deflected(const Whisker& w, const ObjectGeometryB& g, 
       follow = g.last_deflected->follow;
       return g.last_deflected->k;
     }
-    if (!g.last_deflected) g.last_deflected.emplace();
+    if (!g.last_deflected) g.last_deflected = ObjectGeometryB::Deflected{};
     ObjectGeometryB::Deflected& d = *g.last_deflected;
     d.load = load;
     const bool second_order = w.properties().scheme != Scheme::paper;
@@ -182,7 +182,7 @@ ContactKinematics<S> walk_deflected(const Whisker& w, const ObjectGeometryB& g, 
     }
     const ContactKinematics<S> k = deflect_for_solve<S>(w, F_L, C_L, s, follow);
     g.last_jacobian = ObjectGeometryB::DeflectedJacobian{input, k, follow};
-    if (!g.last_deflected) g.last_deflected.emplace();
+    if (!g.last_deflected) g.last_deflected = ObjectGeometryB::Deflected{};
     ObjectGeometryB::Deflected& d = *g.last_deflected;
     auto v = [](const V3<S>& x) { return V3<double>(value_of(x.x), value_of(x.y), value_of(x.z)); };
     d.load = load;
