@@ -609,7 +609,14 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
         from.state.arc_length = c.arc_length;
         from.lm.u[2] = c.arc_length / scales.length;
         double sigma = 1.0;
-        ObjectAttempt b = attempt_object(w, scales, g, FrictionLaw{}, sigma, false, from.lm.u, options);
+        // On a creased shape: holding the feature the whisker enters there (an edge: the crease), else directly.
+        ObjectAttempt b = from;
+        b.status = Status::not_converged;
+        if (g.shape->needs_thickness())
+          b = attempt_on_features(w, scales, g, FrictionLaw{}, sigma, from, options,
+                                  g.query(X.R_WB.transpose() * (c.point_W - X.p_W_base)));
+        if (b.status != Status::converged || std::abs(b.state.arc_length - a.state.arc_length) < 1e-9 * scales.length)
+          b = attempt_object(w, scales, g, FrictionLaw{}, sigma, false, from.lm.u, options);
         if (b.status == Status::not_converged && g.shape->needs_thickness())
           b = attempt_by_bracketing(w, scales, g, FrictionLaw{}, sigma, from, options);
         if (b.status == Status::converged && valid_contact(w, g, b, sigma)) {

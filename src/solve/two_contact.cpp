@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
 
@@ -91,6 +92,8 @@ using Matrix6 = Eigen::Matrix<double, 6, 6>;
 /// Newton rounds with the features and pieces held; features and pieces moved between rounds.
 constexpr int feature_rounds = 8;
 constexpr int newton_iterations = 60;
+/// Points per link at which the first contact's far side is searched for a lower gap.
+constexpr int beyond_samples = 32;
 
 struct Held {
   std::array<ObjectGeometryB, 2> g;
@@ -193,6 +196,31 @@ TwoContacts solve_two_contacts(const Whisker& w, const Scales& sc, const ObjectG
   Vector6 x;
   x << first.state.force_y / sc.force, first.state.force_z / sc.force, first.state.arc_length / L, 0.0, 0.0,
       std::clamp(s_second, 1e-3 * L, L * (1.0 - 1e-6)) / L;
+  // Where the first contact's gap is a maximum along the whisker (a whisker curving toward a flat facet touches
+  // where its gap is lowest on either side: the creases), it starts at the lowest point on its far side.
+  if (g.shape->needs_thickness()) {
+    std::vector<Eigen::Vector3d> omega(static_cast<std::size_t>(w.links())), nodes;
+    deflect_two_loads(w, loads_of(w, sc, g, x), omega.data());
+    deflected_nodes_B(w, omega.data(), nodes);
+    const double s1 = first.state.arc_length, away = s_second > s1 ? -1.0 : 1.0, link = L / w.links();
+    double best_s = s1, best_gap = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= 3 * beyond_samples; ++i) {
+      const double s = std::clamp(s1 + away * i * link / beyond_samples, 1e-3 * L, L * (1.0 - 1e-6));
+      int k;
+      double h;
+      w.locate(s, k, h);
+      const auto uk = static_cast<std::size_t>(std::clamp(k, 0, w.links() - 1));
+      const double f = std::clamp(h / w.link_lengths()[uk], 0.0, 1.0);
+      const Eigen::Vector3d c = (1.0 - f) * nodes[uk] + f * nodes[uk + 1];
+      double slope = 0.0;
+      const double gap = g.query(c).signed_distance - (g.thickness ? whisker_radius_at(w, s, slope) : 0.0);
+      if (gap < best_gap) {
+        best_gap = gap;
+        best_s = s;
+      }
+    }
+    if (best_gap < -second_contact_depth) x[2] = best_s / L;
+  }
   Held held;
   {
     const TwoLoadKinematics k = deflect_two_loads(w, loads_of(w, sc, g, x));
@@ -201,7 +229,21 @@ TwoContacts solve_two_contacts(const Whisker& w, const Scales& sc, const ObjectG
   const double tolerance = options.tolerance / L;
   for (int round = 0; round < feature_rounds; ++round) {
     double res = 0.0;
-    if (!newton(w, sc, held, x, tolerance, out.iterations, res)) return out;
+    const Vector6 x_start = x;
+    if (!newton(w, sc, held, x, tolerance, out.iterations, res) && g.shape->needs_thickness()) {
+      // Stalled: the features nearest where it stalled held instead, from the round's start.
+      const TwoLoadKinematics k = deflect_two_loads(w, loads_of(w, sc, g, x));
+      bool moved = false;
+      for (std::size_t i = 0; i < 2; ++i) {
+        const std::int64_t nearest = g.query(k.p_B[i]).feature_id;
+        moved = moved || nearest != held.g[i].held_feature;
+        held.g[i].held_feature = nearest;
+      }
+      x = x_start;
+      if (moved && newton(w, sc, held, x, tolerance, out.iterations, res)) res = std::max(res, 0.0);
+      else res = -1.0;
+    }
+    if (res < 0.0 || res > tolerance) return out;
     out.residual = res * L;
     // Pieces and features at the solution: where another is lower or nearer, hold it and solve again.
     const std::array<LoadState, 2> loads = loads_of(w, sc, g, x);
