@@ -458,13 +458,22 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
     Eigen::Vector3d u = step_tip ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.0, 0.0, touch.arc_length / sc.length);
     double lambda = 0.0, step = 0.25;
     ObjectAttempt last = out.attempt;
+    bool have_step = false;  // `last` is a converged step
     while (lambda < 1.0 && step > 1.0 / 1024.0) {
       const double next = std::min(1.0, lambda + step);
       ObjectGeometryB gi = g;
       gi.offset_B = (1.0 - next) * away;
       ObjectAttempt a = attempt_object(w, sc, gi, law, sigma, step_tip, u, options);
       iterations += a.lm.iterations;
+      if (a.status == Status::not_converged && !step_tip && have_step && g.shape->needs_thickness()) {
+        // Stalled in a crease's band: the contact may move to the next crease (the gap's minimum bracketed
+        // along the whisker from the last step's contact).
+        ObjectAttempt b = attempt_by_bracketing(w, sc, gi, law, sigma, last, options);
+        iterations += b.lm.iterations;
+        if (b.status == Status::converged) a = b;
+      }
       if (a.status == Status::converged && valid_contact(w, gi, a, sigma)) {
+        have_step = true;
         step_tip = a.tip;
         u = a.lm.u;
         lambda = next;
