@@ -636,6 +636,35 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
           Solution s = object_solution(w, X, object, g, single, options, approach_W, two_contact_rounds - 1);
           if (s.status == Status::converged) return s;
         }
+        if (g.shape->needs_thickness()) {
+          // The whisker enters beside its contact across a crease (on the same link: its chord passes over the
+          // crease, which the load point's own feature does not see): the contact held on that crease, an edge
+          // as a peg of radius 0 (its normal there is the mesh's at the edge), checked against the mesh itself.
+          const ObjectContactPoint at = contact_point_at(w, g, a.state, false, o.sigma);
+          const Eigen::Vector3d p_B = X.R_WB.transpose() * (c.point_W - X.p_W_base);
+          SurfacePoint crease = g.query(p_B);
+          for (int k = 1; k < crease_samples && crease.feature == SurfaceFeature::face; ++k) {
+            const SurfacePoint q = g.query(at.c_B + (k / double(crease_samples)) * (p_B - at.c_B));
+            if (q.feature == SurfaceFeature::edge) crease = q;
+          }
+          if (crease.feature == SurfaceFeature::edge) {
+            ObjectGeometryB held = g;
+            held.last_deflected.reset();
+            held.held_feature = crease.feature_id;
+            held.core_B = LineCore{crease.closest - g.offset_B, crease.edge_direction, 0.0};
+            double held_sigma = core_side(held, at.c_B, at.t_B);
+            for (const Eigen::Vector3d& u : {a.lm.u, from.lm.u}) {
+              ObjectAttempt h = attempt_object(w, scales, held, FrictionLaw{}, held_sigma, false, u, options);
+              if (h.status != Status::converged || !valid_contact(w, held, h, held_sigma)) continue;
+              ObjectOutcome single = o;
+              single.attempt = h;
+              single.attempt.lm.iterations += a.lm.iterations + two.iterations;
+              single.sigma = held_sigma;
+              Solution s = object_solution(w, X, object, held, single, options, approach_W, two_contact_rounds - 1);
+              if (s.status == Status::converged) return s;
+            }
+          }
+        }
       }
     }
     if (c.gap < -second_contact_depth) {
