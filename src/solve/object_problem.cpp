@@ -239,6 +239,33 @@ void deflected_nodes(const Whisker& w, const ObjectGeometryB& g, const Placement
   for (auto& p : nodes) p = X.to_world(p);
 }
 
+double whisker_radius_at(const Whisker& w, double s, double& slope) { return radius_at(w, s, slope); }
+
+double piece_gap_at(ClearancePiece piece, const Whisker& w, const ObjectGeometryB& g, double s,
+                    const Eigen::Vector3d& c_B, const Eigen::Vector3d& t_B, const Eigen::Vector3d& y_B) {
+  const V3<double> c(c_B);
+  const FollowerVectors<double> follow{V3<double>(t_B), V3<double>(y_B)};
+  const SurfacePoint at_c = g.query(c_B);
+  double slope = 0.0;
+  const double gap_c = at_c.signed_distance - (g.thickness ? radius_at(w, s, slope) : 0.0);
+  return piece_gap(piece, w, g, s, c, follow, gap_c, at_c);
+}
+
+bool contact_pieces_apply(const Whisker& w, const ObjectGeometryB& g) { return pieces_apply(w, g); }
+
+LoadState side_load_state(const Whisker& w, const ObjectGeometryB& g, double force_y, double force_z, double s) {
+  double slope = 0.0;
+  const double r = g.thickness ? radius_at(w, s, slope) : 0.0;
+  V3<double> F_L, C_L;
+  side_load(FrictionLaw{}, g.thickness, force_y, force_z, r, slope, F_L, C_L);
+  LoadState state;
+  state.force_x = F_L.x;
+  state.force_y = F_L.y;
+  state.force_z = F_L.z;
+  state.arc_length = s;
+  return state;
+}
+
 SurfacePoint ObjectGeometryB::query(const Eigen::Vector3d& c_B) const {
   const Eigen::Vector3d p_O = R_BO.transpose() * (c_B - offset_B - p_BO);
   SurfacePoint q = held_feature >= 0 ? shape->nearest_on_feature(p_O, held_feature) : shape->nearest(p_O);

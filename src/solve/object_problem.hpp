@@ -127,6 +127,17 @@ ObjectContactPoint contact_point_at(const Whisker& w, const ObjectGeometryB& g, 
 /// Side of a line core at a configuration: the sign of (c - axis) . (a x t).
 double core_side(const ObjectGeometryB& g, const Eigen::Vector3d& c_B, const Eigen::Vector3d& t_B);
 
+/// r(s) and r'(s) (`slope`) of the whisker's linear taper between nodes.
+double whisker_radius_at(const Whisker& w, double s, double& slope);
+/// The gap of a piece of the loaded link at arc length s whose load point is c_B with the load frame's x and y
+/// axes t_B, y_B (doubles; the solves' piece_gap).
+double piece_gap_at(ClearancePiece piece, const Whisker& w, const ObjectGeometryB& g, double s,
+                    const Eigen::Vector3d& c_B, const Eigen::Vector3d& t_B, const Eigen::Vector3d& y_B);
+/// Whether pieces other than the load point apply (second-order scheme; not a line without radius).
+bool contact_pieces_apply(const Whisker& w, const ObjectGeometryB& g);
+/// The frictionless side load (its axial part from the taper) of normal components F_y, F_z at s.
+LoadState side_load_state(const Whisker& w, const ObjectGeometryB& g, double force_y, double force_z, double s);
+
 /// The rest whisker's deepest point into the object: arc length, gap (< 0 inside), the object's normal there.
 struct DeepestPoint {
   double arc_length = 0.0;
