@@ -563,8 +563,8 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
     return off;
   }
   Solution out;
-  const ContactKinematics<double> k = kinematics_at(w, g, a.state);
-  fill_solution(w, X, a.state, options, std::nullopt, out, nullptr, &k);
+  const ContactKinematics<double> solved = kinematics_at(w, g, a.state);
+  fill_solution(w, X, a.state, options, std::nullopt, out, nullptr, &solved);
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * w.length();
   if (a.status != Status::converged) {
