@@ -114,7 +114,9 @@ class Integrator {
       ContactValue& cv = out[o];
       // Nearest approach of the centre line (segment by segment) to the line, minus the radii.
       double best = std::numeric_limits<double>::infinity(), best_u_raw = 0.0;
+      std::size_t best_i = 0;
       Eigen::Vector3d best_r = Eigen::Vector3d::Zero(), best_t = Eigen::Vector3d::UnitX();
+      const std::size_t last_link = kin_.nodes_B.size() - 2;
       for (std::size_t i = 0; i + 1 < kin_.nodes_B.size(); ++i) {
         const Eigen::Vector3d p = kin_.nodes_B[i], d = kin_.nodes_B[i + 1] - p, w0 = p - c_B;
         const double a = d.squaredNorm(), b = d.dot(e_B), denom = a - b * b;
@@ -127,6 +129,7 @@ class Integrator {
         if (gap < best) {
           best = gap;
           best_u_raw = u_raw;
+          best_i = i;
           best_r = r;
           best_t = d;
           cv.gap = gap;
@@ -135,12 +138,14 @@ class Integrator {
           cv.x_B = x;
         }
       }
-      // Which side of the line the whisker is on: the sign of r . (t x e) where the nearest point lies inside its
-      // link (where the centre line can cross the line), carried from step to step, so that a centre line pushed
-      // across an edge (radius 0) within one step counts as a penetration, not as the other side. Beyond the
-      // whisker's ends (the nearest point is an end node) the side is forgotten and read again later.
+      // Which side of the line the whisker is on: the sign of r . (t x e) where the nearest point lies on the
+      // whisker (where the centre line can cross the line), carried from step to step, so that a centre line
+      // pushed across an edge (radius 0) within one step counts as a penetration, not as the other side. Beyond
+      // the whisker's ends (the nearest point is the base or the tip, clamped) the side is forgotten and read
+      // again later. A node between two links is on the whisker: a contact passing from one link to the next
+      // keeps its side.
       const double side = best_r.dot(best_t.cross(e_B)) >= 0.0 ? 1.0 : -1.0;
-      const bool interior = best_u_raw > 0.0 && best_u_raw < 1.0;
+      const bool interior = !(best_i == 0 && best_u_raw <= 0.0) && !(best_i == last_link && best_u_raw >= 1.0);
       const double side_before = previous[o].side;
       cv.side = interior ? (side_before != 0.0 ? side_before : side) : 0.0;
       const bool crossed = interior && side_before != 0.0 && side != side_before;
@@ -180,37 +185,59 @@ class Integrator {
       if (before.state == ContactState::none) cv.anchor = lambda;  // touches: sticks where it touched
       const double mu = ob.friction_coefficient;
       double ft = 0.0;
+      Eigen::Vector3d b = e_B;  // the friction force's direction (below)
       if (fn > 0.0 || frozen_on) {
         const bool damped = frozen_on || (fn_raw > 0.0 && cn * gap_rate != 0.0);
         const Eigen::Vector3d dfn_dx = -kn_ * n, dfn_dv = damped ? Eigen::Vector3d(-cn * n) : Eigen::Vector3d::Zero();
         cv.S_x = n * dfn_dx.transpose();
         cv.S_v = n * dfn_dv.transpose();
-        // Elastic-plastic friction: the stick spring's force decides stick or slip (so that the state does not
-        // chatter); a damper on the stick spring (critical for the effective mass along the line, as the normal
-        // one) adds to the force, which stays inside the cone.
-        const double ct = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * e_B).squaredNorm(), 1e-300));
-        const double spring = -kt_ * (lambda - cv.anchor), damper = -ct * e_B.dot(v_B);
+        // Elastic-plastic friction, with the quasi-static frictional edge's law (spec §3.1; solve_frictional_edge):
+        // the whisker slides freely along its own length, so the friction force lies across it, along
+        // b = e_perp / |e_perp| (e_perp: the line's direction without its part along the whisker's tangent t);
+        // the stick spring holds the crossing's coordinate lambda along the line at the anchor (a whisker
+        // displacement delta across it moves lambda by b . delta / c, c = |e_perp|: spring -k_t c (lambda - anchor)
+        // along b), and Coulomb bounds the force's part along the line by mu times its part normal to the line:
+        // |F . e| <= mu |F - (F . e) e|, with F = f_n n + f_t b: |f_t| <= mu f_n / sqrt(c^2 - mu^2 (1 - c^2)) (no
+        // bound when the line is within atan(mu) of the whisker's tangent). A damper on the stick spring
+        // (critical for the effective mass along b, as the normal one) adds to the force, which stays inside the
+        // cone; the spring's force alone decides stick or slip (so that the state does not chatter).
+        // (b is also made normal to n, which at a node between two links is not exactly normal to the chord, so
+        // that c = b . e makes the cone exact.)
+        const Eigen::Vector3d t_hat = best_t.normalized();
+        Eigen::Vector3d e_perp = e_B - e_B.dot(t_hat) * t_hat;
+        e_perp -= e_perp.dot(n) * n;
+        const bool frictional = mu > 0.0 && e_perp.norm() > 1e-9;
+        if (frictional) b = e_perp.normalized();
+        const double c_line = frictional ? b.dot(e_B) : 0.0;
+        const double cone = c_line * c_line - mu * mu * (1.0 - c_line * c_line);
+        const double ratio = cone > 0.0 ? mu / std::sqrt(cone) : std::numeric_limits<double>::infinity();
+        const double limit = ratio * fn;
+        const double ct = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * b).squaredNorm(), 1e-300));
+        const double spring = -kt_ * c_line * (lambda - cv.anchor), damper = -ct * b.dot(v_B);
         const ContactState keep = frozen ? (*frozen)[o] : ContactState::none;
-        const bool stick = keep != ContactState::none ? keep == ContactState::stick && mu > 0.0
-                                                      : mu > 0.0 && std::abs(spring) <= mu * fn;
+        const bool stick = keep != ContactState::none ? keep == ContactState::stick && frictional
+                                                      : frictional && std::abs(spring) <= limit;
         if (stick) {
           cv.state = ContactState::stick;
           ft = spring + damper;
-          cv.S_x -= kt_ * e_B * e_B.transpose();
+          cv.S_x -= kt_ * b * b.transpose();
           if (keep != ContactState::none) {
-            cv.S_v -= ct * e_B * e_B.transpose();
-          } else if (std::abs(ft) > mu * fn) {
-            ft = ft > 0.0 ? mu * fn : -mu * fn;
+            cv.S_v -= ct * b * b.transpose();
+          } else if (std::abs(ft) > limit) {
+            ft = ft > 0.0 ? limit : -limit;
           } else {
-            cv.S_v -= ct * e_B * e_B.transpose();
+            cv.S_v -= ct * b * b.transpose();
           }
-        } else {
+        } else if (frictional) {
           cv.state = ContactState::slip;
           const double sign = spring >= 0.0 ? 1.0 : -1.0;
-          ft = sign * mu * fn;
-          cv.anchor = lambda + ft / kt_;  // the stick point slides along with the contact
-          cv.S_x += (sign * mu) * e_B * dfn_dx.transpose();
-          cv.S_v += (sign * mu) * e_B * dfn_dv.transpose();
+          ft = sign * limit;
+          cv.anchor = lambda + ft / (kt_ * c_line);  // the stick point slides along with the contact
+          cv.S_x += (sign * ratio) * b * dfn_dx.transpose();
+          cv.S_v += (sign * ratio) * b * dfn_dv.transpose();
+        } else {
+          cv.state = ContactState::slip;
+          cv.anchor = lambda;
         }
       } else {
         // Inside, but the damper pulls harder than the spring pushes: no force. Still touching (the state follows
@@ -219,7 +246,7 @@ class Integrator {
         cv.state = before.state != ContactState::none ? before.state : ContactState::slip;
         continue;
       }
-      cv.force_B = fn * n + ft * e_B;
+      cv.force_B = fn * n + ft * b;
       cv.force_W = R * cv.force_B;
       modal_force.noalias() += Ui * cv.force_B;
       if (U) (*U)[o] = std::move(Ui);
