@@ -646,8 +646,8 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
           const ObjectContactPoint at = contact_point_at(w, g, a.state, false, o.sigma);
           const Eigen::Vector3d p_B = X.R_WB.transpose() * (c.point_W - X.p_W_base);
           SurfacePoint crease = g.query(p_B);
-          for (int k = 1; k < crease_samples && crease.feature == SurfaceFeature::face; ++k) {
-            const SurfacePoint q = g.query(at.c_B + (k / double(crease_samples)) * (p_B - at.c_B));
+          for (int j = 1; j < crease_samples && crease.feature == SurfaceFeature::face; ++j) {
+            const SurfacePoint q = g.query(at.c_B + (j / double(crease_samples)) * (p_B - at.c_B));
             if (q.feature == SurfaceFeature::edge) crease = q;
           }
           if (crease.feature == SurfaceFeature::edge) {
