@@ -420,8 +420,16 @@ class Integrator {
     // taken as two halves, which are kept; their difference / 3 estimates their error), three times the stage
     // solves: at the slip -> stick transition TR-BDF2's explicit first stage flips the elastic-plastic state back
     // and forth (docs/dynamics.md, "Integrator").
+    // A contact that flickers (touch and release again and again within a millisecond, as where a frictionless
+    // contact grazes the short, light links near the tip: TR-BDF2's trapezoidal stage leaves an alternating
+    // response in that very stiff contact) switches to SDIRK2, which passes it as one release, until no object
+    // has been touched for a millisecond (bench_dynamics' peg: 3,509 events with TR-BDF2 alone, 21 with SDIRK2).
     const bool friction = std::any_of(objects_.begin(), objects_.end(),
                                       [](const LineObstacle& o) { return o.friction_coefficient > 0.0; });
+    bool sdirk2 = friction, step_sdirk2_used = friction;
+    constexpr std::size_t flicker_events = 6;
+    constexpr double flicker_window = 1e-3;  // [s]
+    double last_touched = 0.0;
     State next, full, mid;
     integrate_with_step_control(
         opt_, frames, ts,
@@ -429,7 +437,8 @@ class Integrator {
           const double tol =
               opt_.relative_tolerance * std::max(scale, energy_norm(y.eta, y.rate)) + opt_.absolute_tolerance;
           double err = 0.0;
-          if (friction) {
+          step_sdirk2_used = sdirk2;
+          if (sdirk2) {
             if (!(step_sdirk2(t, h, y, tol, full) && step_sdirk2(t, 0.5 * h, y, tol, mid) &&
                   step_sdirk2(t + 0.5 * h, 0.5 * h, mid, tol, next)))
               return StepAttempt{false, 0.0, tol};
@@ -439,12 +448,20 @@ class Integrator {
           return StepAttempt{true, err, tol};
         },
         [&](double t, double h) {
-          if (friction) {
+          if (step_sdirk2_used) {
             note_events(ts, t, 0.5 * h, y, mid);
             note_events(ts, t + 0.5 * h, 0.5 * h, mid, next);
           } else {
             note_events(ts, t, h, y, next);
+            const std::size_t e = ts.events.size();
+            if (e >= flicker_events && ts.events[e - 1].time - ts.events[e - flicker_events].time < flicker_window)
+              sdirk2 = true;
           }
+          if (std::any_of(next.contacts.begin(), next.contacts.end(),
+                          [](const ContactValue& c) { return c.state != ContactState::none; }))
+            last_touched = t + h;
+          else if (sdirk2 && !friction && t + h - last_touched > flicker_window)
+            sdirk2 = false;
           y = next;
           scale = std::max(scale, energy_norm(y.eta, y.rate));
         },
