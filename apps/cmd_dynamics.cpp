@@ -50,11 +50,13 @@ void register_modes(CLI::App& app) {
 }
 
 void register_dynamics(CLI::App& app) {
-  auto* cmd = app.add_subcommand("dynamics", "Motion of a whisker whose base whisks or holds still (linearised chain, "
-                                             "implicit integration); see docs/dynamics.md");
+  auto* cmd = app.add_subcommand("dynamics", "Motion of a whisker whose base whisks or holds still, in air or "
+                                             "against pegs and edges (implicit integration, linear or nonlinear "
+                                             "chain); see docs/dynamics.md");
   auto case_path = std::make_shared<std::string>();
   auto out_dir = std::make_shared<std::string>();
-  cmd->add_option("CASE", *case_path, "case file (JSON: whisker, dynamics, whisking, initial, duration, output_rate)")
+  cmd->add_option("CASE", *case_path, "case file (JSON: whisker, dynamics, whisking, initial, objects, contact, model, "
+                                     "duration, output_rate)")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", *out_dir, "output folder: dynamics.csv, dynamics.h5, summary.json")

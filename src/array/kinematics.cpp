@@ -60,10 +60,16 @@ double Protraction::rate(double t) const {
 }
 
 void validate(const Protraction& p, const std::string& field) {
-  if (!std::isfinite(p.amplitude)) fail(field + ".amplitude_deg must be finite, got " + fmt(to_deg(p.amplitude)));
-  if (!(std::isfinite(p.frequency) && p.frequency >= 0.0))
-    fail(field + ".frequency_Hz must be finite and >= 0, got " + fmt(p.frequency));
-  if (!std::isfinite(p.set_point)) fail(field + ".set_point_deg must be finite, got " + fmt(to_deg(p.set_point)));
+  // A protraction angle beyond a half turn either way means nothing for a whisker on a face; rats whisk at 5-25 Hz,
+  // and 10 kHz already lies above a whisker's first modes (docs/dynamics.md): larger values are typing errors
+  // (and would make the dynamics take unbounded steps).
+  constexpr double max_angle = std::numbers::pi, max_frequency_Hz = 1e4;
+  if (!(std::abs(p.amplitude) <= max_angle))
+    fail(field + ".amplitude_deg must lie in [-180, 180], got " + fmt(to_deg(p.amplitude)));
+  if (!(p.frequency >= 0.0 && p.frequency <= max_frequency_Hz))
+    fail(field + ".frequency_Hz must lie in [0, 10000], got " + fmt(p.frequency));
+  if (!(std::abs(p.set_point) <= max_angle))
+    fail(field + ".set_point_deg must lie in [-180, 180], got " + fmt(to_deg(p.set_point)));
   if (!std::isfinite(p.phase)) fail(field + ".phase_deg must be finite, got " + fmt(to_deg(p.phase)));
   if (p.series_time.size() != p.series_dtheta.size())
     fail(field + ".series: time_s has " + std::to_string(p.series_time.size()) + " values but dtheta_deg has " +
@@ -72,8 +78,8 @@ void validate(const Protraction& p, const std::string& field) {
   for (std::size_t i = 0; i < p.series_time.size(); ++i) {
     if (!std::isfinite(p.series_time[i]))
       fail(field + ".series.time_s[" + std::to_string(i) + "] must be finite, got " + fmt(p.series_time[i]));
-    if (!std::isfinite(p.series_dtheta[i]))
-      fail(field + ".series.dtheta_deg[" + std::to_string(i) + "] must be finite, got " +
+    if (!(std::abs(p.series_dtheta[i]) <= 2.0 * max_angle))
+      fail(field + ".series.dtheta_deg[" + std::to_string(i) + "] must lie in [-360, 360], got " +
            fmt(to_deg(p.series_dtheta[i])));
     if (i > 0 && !(p.series_time[i] > p.series_time[i - 1]))
       fail(field + ".series.time_s must increase strictly, but time_s[" + std::to_string(i) + "] = " +

@@ -47,12 +47,16 @@ void link_load(const LinkInertia& L, const InputParts& u, Eigen::Vector3d& f, Ei
 }  // namespace
 
 void validate(const DynamicsProperties& p) {
-  if (!(std::isfinite(p.density) && p.density > 0.0))
-    throw std::invalid_argument("dynamics.density must be positive and finite [kg/m^3], got " + format_value(p.density));
-  if (!(std::isfinite(p.damping_ratio) && p.damping_ratio >= 0.0))
-    throw std::invalid_argument("dynamics.damping_ratio must be >= 0 and finite, got " + format_value(p.damping_ratio));
-  if (p.joint_damping_time && !(std::isfinite(*p.joint_damping_time) && *p.joint_damping_time >= 0.0))
-    throw std::invalid_argument("dynamics.joint_damping_time must be >= 0 and finite [s], got " +
+  // Upper bounds far beyond anything physical (every solid is below 2.3e4 kg/m^3; follicle damping ratios are
+  // ~0.1-0.3), so that a typing error is refused instead of overflowing the damping or mass matrices (a damping
+  // ratio of 1e308 made the integrator run without end).
+  constexpr double max_density = 1e5, max_damping = 1e6;
+  if (!(p.density > 0.0 && p.density <= max_density))
+    throw std::invalid_argument("dynamics.density must lie in (0, 1e5] [kg/m^3], got " + format_value(p.density));
+  if (!(p.damping_ratio >= 0.0 && p.damping_ratio <= max_damping))
+    throw std::invalid_argument("dynamics.damping_ratio must lie in [0, 1e6], got " + format_value(p.damping_ratio));
+  if (p.joint_damping_time && !(*p.joint_damping_time >= 0.0 && *p.joint_damping_time <= max_damping))
+    throw std::invalid_argument("dynamics.joint_damping_time must lie in [0, 1e6] [s], got " +
                                 format_value(*p.joint_damping_time));
   if (!(std::isfinite(p.air.density) && p.air.density > 0.0))
     throw std::invalid_argument("dynamics.air_density must be positive and finite [kg/m^3], got " +

@@ -25,4 +25,19 @@ double distance_to_curve(const std::vector<Eigen::Vector2d>& curve_px, const Eig
   return std::sqrt(best);
 }
 
+double distance_across_curve(const std::vector<Eigen::Vector2d>& curve_px, const Eigen::Vector2d& pixel) {
+  double best = distance_to_curve(curve_px, pixel);
+  if (curve_px.size() < 2) return best;
+  // Beyond an end, the distance to the end segment's line (not to the end point).
+  const auto beyond = [&](const Eigen::Vector2d& end, const Eigen::Vector2d& inner) {
+    const Eigen::Vector2d u = end - inner, w = pixel - end;
+    const double uu = u.squaredNorm();
+    if (!(uu > 0.0) || w.dot(u) <= 0.0) return;
+    best = std::min(best, std::abs(u.x() * w.y() - u.y() * w.x()) / std::sqrt(uu));
+  };
+  beyond(curve_px.front(), curve_px[1]);
+  beyond(curve_px.back(), curve_px[curve_px.size() - 2]);
+  return best;
+}
+
 }  // namespace vibrissa::recon

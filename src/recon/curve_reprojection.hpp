@@ -18,4 +18,11 @@ std::vector<Eigen::Vector2d> project_curve(const std::vector<Eigen::Vector3d>& d
 /// Distance [px] of `pixel` to the projected polyline `curve_px` (nearest point of any segment).
 double distance_to_curve(const std::vector<Eigen::Vector2d>& curve_px, const Eigen::Vector2d& pixel);
 
+/// Distance [px] of `pixel` across the projected polyline `curve_px`: as distance_to_curve, but beyond an end
+/// the distance to the line of the end segment. For a pixel found by intersecting an epipolar line with a
+/// view's curve, whose position along the curve carries the other view's noise divided by the sine of the
+/// angle between line and curve (several pixels where they meet at a grazing angle) and only its position
+/// across the curve is measured.
+double distance_across_curve(const std::vector<Eigen::Vector2d>& curve_px, const Eigen::Vector2d& pixel);
+
 }  // namespace vibrissa::recon

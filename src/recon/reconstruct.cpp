@@ -281,6 +281,7 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const std::vector<const
     Eigen::Vector3d p_W;
     std::vector<std::pair<std::size_t, Eigen::Vector2d>> px;  ///< (view, pixel) it was triangulated from
     double likelihood;
+    std::size_t measured = 0;  ///< which entry of px a view tracked; the others are epipolar intersections
   };
   std::vector<Point3> found;
   std::vector<std::vector<std::pair<std::size_t, Match>>> partners(pts[r].px.size());
@@ -333,7 +334,7 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const std::vector<const
       const Triangulated t = triangulate({&views[r].camera, &views[v].camera}, {m.other_px, pts[v].px[m.own]});
       if (!t.ok) continue;
       found.push_back({arc, t.p_W, {{r, m.other_px}, {v, pts[v].px[m.own]}},
-                       std::sqrt(pts[v].likelihood[m.own] * m.other_likelihood)});
+                       std::sqrt(pts[v].likelihood[m.own] * m.other_likelihood), 1});
     }
   }
   std::stable_sort(found.begin(), found.end(), [](const Point3& x, const Point3& y) { return x.arc < y.arc; });
@@ -360,8 +361,14 @@ ReconstructedFrame reconstruct_frame(std::int64_t frame, const std::vector<const
     std::vector<std::vector<Eigen::Vector2d>> curve_px(n_views);
     for (std::size_t v : usable) curve_px[v] = project_curve(curve->dense, views[v].camera);
     std::vector<double> err(found.size(), 0.0);
+    // An intersection's position along its curve is not measured: at an end, where the epipolar line may meet
+    // the curve's extension at a grazing angle, it can lie pixels beyond the end although the point is right.
     for (std::size_t i = 0; i < found.size(); ++i)
-      for (const auto& [v, px] : found[i].px) err[i] = std::max(err[i], distance_to_curve(curve_px[v], px));
+      for (std::size_t k = 0; k < found[i].px.size(); ++k) {
+        const auto& [v, px] = found[i].px[k];
+        err[i] = std::max(err[i], k == found[i].measured ? distance_to_curve(curve_px[v], px)
+                                                         : distance_across_curve(curve_px[v], px));
+      }
     const double gate = std::max(o.outlier_px, 3.0 * median_of(err));
     bool dropped = false;
     for (std::size_t i = 0; i < found.size(); ++i)

@@ -8,6 +8,7 @@
 #include "edge_problem.hpp"
 #include "object_mode.hpp"
 #include "solution_check.hpp"
+#include "two_contact.hpp"
 #include "vibrissa/objects/clearance.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
@@ -231,7 +232,7 @@ ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const Objec
     iterations += held.lm.iterations;
     if (held.status != Status::converged) break;
     u = held.lm.u;
-    deflected_shape(w, Placement{}, held.state, nodes);
+    deflected_nodes(w, g, Placement{}, held.state, nodes);
     const Clearance c = local ? nearest_about(placed, w, nodes, g.thickness, held.state.arc_length)
                               : clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none);
     const double s_next = std::clamp(c.arc_length, 1e-6 * sc.length, sc.length) / sc.length;
@@ -372,7 +373,7 @@ ObjectAttempt attempt_on_features(const Whisker& w, const Scales& sc, const Obje
   return failed;
 }
 
-ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
+ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                                    std::optional<double> hint, const SolveOptions& options, const LoadState* warm) {
   ObjectOutcome out;
   std::optional<DeepestPoint> deepest;
@@ -396,12 +397,14 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
     sigma = core_side(g, w.rest_point_B(d.arc_length),
                       w.rest_link_frames_B()[static_cast<std::size_t>(std::clamp(k, 0, w.links() - 1))].col(0));
   };
+  LoadState start;  // warm: the load the first attempt starts at (its walk made once, for it and the checks)
   if (warm) {
     tip = is_tip(w, warm->arc_length);
     u0 = tip ? Eigen::Vector3d(warm->force_x, warm->force_y, warm->force_z) / sc.force
              : Eigen::Vector3d(warm->force_y / sc.force, warm->force_z / sc.force, warm->arc_length / sc.length);
+    start = tip ? *warm : start_side_load(w, sc, g, law, u0);
     if (g.core_B) {  // the side of the line core the warm contact is on
-      const ObjectContactPoint p = contact_point_at(w, g, *warm, tip, 1.0);
+      const ObjectContactPoint p = contact_point_at(w, g, start, tip, 1.0);
       sigma = core_side(g, p.c_B, p.t_B);
     }
   } else {
@@ -421,7 +424,7 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
   WarmAttempt first;
   SolveOptions first_options = options;
   if (warm) {
-    first = {true, lowest_piece(w, g, *warm)};
+    first = {true, lowest_piece(w, g, start)};
     // On an object with creases (a mesh, a box) a warm attempt that does not converge within a few Newton steps
     // has stalled at a crease's band: the sliding attempt below crosses it (docs/objects.md, "Speed").
     if (g.shape->needs_thickness()) first_options.max_iterations = std::min(options.max_iterations, warm_creased_iterations);
@@ -457,13 +460,22 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
     Eigen::Vector3d u = step_tip ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.0, 0.0, touch.arc_length / sc.length);
     double lambda = 0.0, step = 0.25;
     ObjectAttempt last = out.attempt;
+    bool have_step = false;  // `last` is a converged step
     while (lambda < 1.0 && step > 1.0 / 1024.0) {
       const double next = std::min(1.0, lambda + step);
       ObjectGeometryB gi = g;
       gi.offset_B = (1.0 - next) * away;
       ObjectAttempt a = attempt_object(w, sc, gi, law, sigma, step_tip, u, options);
       iterations += a.lm.iterations;
+      if (a.status == Status::not_converged && !step_tip && have_step && g.shape->needs_thickness()) {
+        // Stalled in a crease's band: the contact may move to the next crease (the gap's minimum bracketed
+        // along the whisker from the last step's contact).
+        ObjectAttempt b = attempt_by_bracketing(w, sc, gi, law, sigma, last, options);
+        iterations += b.lm.iterations;
+        if (b.status == Status::converged) a = b;
+      }
       if (a.status == Status::converged && valid_contact(w, gi, a, sigma)) {
+        have_step = true;
         step_tip = a.tip;
         u = a.lm.u;
         lambda = next;
@@ -485,9 +497,57 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
   return out;
 }
 
+namespace {
+
+/// The outputs of a two-contact equilibrium (Solution's SecondContact says which are whose).
+void two_contact_solution(const Whisker& w, const Placement& X, const TwoContacts& two, Solution& out) {
+  const TwoLoadKinematics k = deflect_two_loads(w, two.loads);
+  const Eigen::Vector3d F_B = k.F_B[0] + k.F_B[1], M_B = k.p_B[0].cross(k.F_B[0]) + k.p_B[1].cross(k.F_B[1]);
+  out.state = two.loads[0];
+  out.arc_length = two.loads[0].arc_length;
+  out.force_magnitude = F_B.norm();
+  out.force_W = X.R_WB * F_B;
+  out.moment_W = X.R_WB * M_B;
+  auto& wf = out.whisker_frame;
+  wf.force = F_B;
+  wf.moment = M_B;
+  wf.FT = std::hypot(F_B.y(), F_B.z());
+  wf.MB = std::hypot(M_B.y(), M_B.z());
+  wf.FD = std::atan2(F_B.z(), F_B.y());
+  wf.MD = std::atan2(M_B.z(), M_B.y());
+  out.contact_point_W = X.to_world(two.point_B[0]);
+  out.normal_force = k.F_B[0].dot(two.normal_B[0]);
+  out.residual = two.residual;
+  if (out.surface) {
+    out.surface->normal_W = X.R_WB * two.normal_B[0];
+    out.surface->friction_direction_W = X.R_WB * two.normal_B[0].cross(k.t_B[0]).normalized();
+    out.surface->feature = two.feature[0];
+    out.surface->tip = false;
+    out.surface->friction_force = 0.0;
+    out.surface->clearance = 0.0;
+    out.surface->clearance_arc_length = two.loads[0].arc_length;
+  }
+  SecondContact second;
+  second.arc_length = two.loads[1].arc_length;
+  second.contact_point_W = X.to_world(two.point_B[1]);
+  second.force_W = X.R_WB * k.F_B[1];
+  second.normal_W = X.R_WB * two.normal_B[1];
+  second.normal_force = k.F_B[1].dot(two.normal_B[1]);
+  second.feature = two.feature[1];
+  out.second_contact = second;
+  out.second_contact_arc_length.reset();
+  if (!out.shape_W.empty()) {
+    out.shape_W.clear();
+    for (const auto& p : two.nodes_B) out.shape_W.push_back(X.to_world(p));
+  }
+  set_status(out, Status::converged, "two contacts on the whisker's side");
+}
+
+}  // namespace
+
 Solution object_solution(const Whisker& w, const Placement& X, const ObjectContact& object, const ObjectGeometryB& g,
                          const ObjectOutcome& o, const SolveOptions& options,
-                         const std::optional<Eigen::Vector3d>& approach_W) {
+                         const std::optional<Eigen::Vector3d>& approach_W, int two_contact_rounds) {
   const ObjectAttempt& a = o.attempt;
   if (a.status == Status::no_contact)
     return unloaded_solution(w, X, Status::no_contact, "the whisker does not reach into the object", options);
@@ -503,7 +563,8 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
     return off;
   }
   Solution out;
-  fill_solution(w, X, a.state, options, std::nullopt, out);
+  const ContactKinematics<double> k = kinematics_at(w, g, a.state);
+  fill_solution(w, X, a.state, options, std::nullopt, out, nullptr, &k);
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * w.length();
   if (a.status != Status::converged) {
@@ -532,13 +593,83 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
   }
   if (out.status == Status::converged) {  // nowhere else inside the object
     std::vector<Eigen::Vector3d> nodes;
-    deflected_shape(w, X, a.state, nodes);
+    deflected_nodes(w, g, X, a.state, nodes);
     const std::vector<double> none;
     const PlacedShape placed{object.shape, object.X_WO};
     const Clearance c = clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none,
                                   -second_contact_depth);
     sc.clearance = std::min(c.gap, 0.0);
     sc.clearance_arc_length = c.gap < 0.0 ? c.arc_length : a.state.arc_length;
+    if (c.gap < -second_contact_depth && two_contact_rounds > 0) {
+      const TwoContacts two = solve_two_contacts(w, Scales(w), g, a, c.arc_length, options);
+      if (two.solved && two.single >= 0) {  // one of the two pulls: the single contact at the other place
+        ObjectOutcome single = o;
+        single.attempt = two.single_attempt;
+        single.attempt.lm.iterations += a.lm.iterations + two.iterations;
+        single.sigma = 1.0;
+        Solution s = object_solution(w, X, object, g, single, options, approach_W, two_contact_rounds - 1);
+        if (s.status == Status::converged) return s;
+      } else if (two.solved) {
+        out.surface = sc;
+        two_contact_solution(w, X, two, out);
+        out.iterations = a.lm.iterations + two.iterations;
+        return out;
+      } else if (!a.tip && !g.core_B) {
+        // Neither: the contact may have jumped to the second place alone (on a mesh, to the next crease).
+        const Scales scales(w);
+        ObjectAttempt from = a;
+        from.state.arc_length = c.arc_length;
+        from.lm.u[2] = c.arc_length / scales.length;
+        double sigma = 1.0;
+        // On a creased shape: holding the feature the whisker enters there (an edge: the crease), else directly.
+        ObjectAttempt b = from;
+        b.status = Status::not_converged;
+        if (g.shape->needs_thickness())
+          b = attempt_on_features(w, scales, g, FrictionLaw{}, sigma, from, options,
+                                  g.query(X.R_WB.transpose() * (c.point_W - X.p_W_base)));
+        if (b.status != Status::converged || std::abs(b.state.arc_length - a.state.arc_length) < 1e-9 * scales.length)
+          b = attempt_object(w, scales, g, FrictionLaw{}, sigma, false, from.lm.u, options);
+        if (b.status == Status::not_converged && g.shape->needs_thickness())
+          b = attempt_by_bracketing(w, scales, g, FrictionLaw{}, sigma, from, options);
+        if (b.status == Status::converged && valid_contact(w, g, b, sigma)) {
+          ObjectOutcome single = o;
+          single.attempt = b;
+          single.attempt.lm.iterations += a.lm.iterations + two.iterations;
+          single.sigma = sigma;
+          Solution s = object_solution(w, X, object, g, single, options, approach_W, two_contact_rounds - 1);
+          if (s.status == Status::converged) return s;
+        }
+        if (g.shape->needs_thickness()) {
+          // The whisker enters beside its contact across a crease (on the same link: its chord passes over the
+          // crease, which the load point's own feature does not see): the contact held on that crease, an edge
+          // as a peg of radius 0 (its normal there is the mesh's at the edge), checked against the mesh itself.
+          const ObjectContactPoint at = contact_point_at(w, g, a.state, false, o.sigma);
+          const Eigen::Vector3d p_B = X.R_WB.transpose() * (c.point_W - X.p_W_base);
+          SurfacePoint crease = g.query(p_B);
+          for (int i_sample = 1; i_sample < crease_samples && crease.feature == SurfaceFeature::face; ++i_sample) {
+            const SurfacePoint q = g.query(at.c_B + (i_sample / double(crease_samples)) * (p_B - at.c_B));
+            if (q.feature == SurfaceFeature::edge) crease = q;
+          }
+          if (crease.feature == SurfaceFeature::edge) {
+            ObjectGeometryB held = g;
+            held.last_deflected.reset();
+            held.held_feature = crease.feature_id;
+            held.core_B = LineCore{crease.closest - g.offset_B, crease.edge_direction, 0.0};
+            double held_sigma = core_side(held, at.c_B, at.t_B);
+            for (const Eigen::Vector3d& u : {a.lm.u, from.lm.u}) {
+              ObjectAttempt h = attempt_object(w, scales, held, FrictionLaw{}, held_sigma, false, u, options);
+              if (h.status != Status::converged || !valid_contact(w, held, h, held_sigma)) continue;
+              ObjectOutcome single = o;
+              single.attempt = h;
+              single.attempt.lm.iterations += a.lm.iterations + two.iterations;
+              single.sigma = held_sigma;
+              Solution s = object_solution(w, X, object, held, single, options, approach_W, two_contact_rounds - 1);
+              if (s.status == Status::converged) return s;
+            }
+          }
+        }
+      }
+    }
     if (c.gap < -second_contact_depth) {
       set_status(out, Status::second_contact,
                  "another part of the whisker would be inside the object: a second contact (not solved)");
@@ -561,7 +692,7 @@ Solution solve_object(const Whisker& w, const Placement& X, const ObjectContact&
   const detail::Scales sc(w);
   const detail::ObjectGeometryB g = detail::object_in_body(X, object);
   const detail::ObjectOutcome o = detail::solve_object_contact(w, sc, g, detail::FrictionLaw{}, hint, options, warm);
-  Solution out = detail::object_solution(w, X, object, g, o, options, approach_W);
+  Solution out = detail::object_solution(w, X, object, g, o, options, approach_W, detail::default_two_contact_rounds);
   if (out.status != Status::converged && out.status != Status::second_contact) out.surface.reset();
   return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
 }

@@ -4,6 +4,9 @@
 
 namespace vibrissa::detail {
 
+/// Rounds of the two-contact solve in the frictionless object mode (object_solution).
+inline constexpr int default_two_contact_rounds = 3;
+
 /// Depth below which another part of the whisker counts as inside the object: a second contact [m].
 inline constexpr double second_contact_depth = 1e-9;
 
@@ -61,11 +64,14 @@ ObjectAttempt attempt_by_bracketing(const Whisker& w, const Scales& sc, const Ob
                                    const FrictionLaw& law, double& sigma, const ObjectAttempt& from,
                                    const SolveOptions& options);
 /// The solve: start (warm, hint, or the rest whisker's deepest point), attempts, continuation from touch.
-ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
+ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                                    std::optional<double> hint, const SolveOptions& options, const LoadState* warm);
-/// The Solution of an outcome: outputs, contact side, approach, second contact.
+/// The Solution of an outcome: outputs, contact side, approach, second contact. Where the whisker would be inside
+/// the object at a second place, a frictionless outcome solves the two contacts together (two_contact.hpp) up to
+/// `two_contact_rounds` times (a single contact found there may enter at the first place again); 0 (the
+/// frictional mode): status second_contact.
 Solution object_solution(const Whisker& w, const Placement& X_WB, const ObjectContact& object,
                          const ObjectGeometryB& g, const ObjectOutcome& outcome, const SolveOptions& options,
-                         const std::optional<Eigen::Vector3d>& approach_W);
+                         const std::optional<Eigen::Vector3d>& approach_W, int two_contact_rounds = 0);
 
 }  // namespace vibrissa::detail

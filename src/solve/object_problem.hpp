@@ -10,6 +10,7 @@
 // zero radius and thickness off exactly edge mode's equations.
 #include <array>
 #include <optional>
+#include <vector>
 
 #include "contact_problem.hpp"
 #include "vibrissa/objects/shape.hpp"
@@ -31,12 +32,23 @@ struct ObjectGeometryB {
   /// The whisker's kinematics (with the load frame's axes) at the last load contact_point_at or lowest_piece
   /// deflected it with: the same load is asked for several times in a solve (checks, the piece, the outputs).
   /// It depends on the whisker and the load alone; a geometry belongs to one solve (one thread, one whisker).
+  /// The residuals' own evaluations go through the same record (walk_deflected), so that the checks and outputs
+  /// at a solved load walk no more.
   struct Deflected {
     std::array<double, 7> load{};  ///< force, couple, s
     ContactKinematics<double> k;
     FollowerVectors<double> follow;
+    std::vector<Eigen::Vector3d> omega;  ///< the joint rotations (second-order scheme; empty: not recorded)
   };
   mutable std::optional<Deflected> last_deflected;
+  /// The last walk with derivatives, keyed by its inputs (values and derivatives): a warm start makes its first
+  /// one early (start_side_load) and the attempt's first evaluation takes it from here.
+  struct DeflectedJacobian {
+    std::array<Dual<3>, 7> input;  ///< force, couple, s
+    ContactKinematics<Dual<3>> k;
+    FollowerVectors<Dual<3>> follow;
+  };
+  mutable std::optional<DeflectedJacobian> last_jacobian;
   /// The shape's query at c_B (B frame).
   [[nodiscard]] SurfacePoint query(const Eigen::Vector3d& c_B) const;
 };
@@ -84,6 +96,10 @@ ObjectAttempt attempt_side(const Whisker& w, const Scales& sc, const ObjectGeome
                            double sigma, const Eigen::Vector3d& u0, const SolveOptions& options,
                            ClearancePiece piece = ClearancePiece::centre,
                            std::optional<double> pinned = std::nullopt);
+/// The load at which attempt_side() from u0 evaluates first, with that evaluation made now and recorded in g (its
+/// walk with derivatives, and its values for the checks at that load: lowest_piece, contact_point_at).
+LoadState start_side_load(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                          const Eigen::Vector3d& u0);
 /// The tip contact's equations from scaled unknowns u0 = (F_x, F_y, F_z) / force scale.
 ObjectAttempt attempt_tip(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                           const Eigen::Vector3d& u0, const SolveOptions& options,
@@ -91,12 +107,36 @@ ObjectAttempt attempt_tip(const Whisker& w, const Scales& sc, const ObjectGeomet
 /// The loaded link's piece with the lowest gap at a load (centre where pieces do not apply).
 ClearancePiece lowest_piece(const Whisker& w, const ObjectGeometryB& g, const LoadState& state);
 
+/// The whisker's deflection by a load in the load frame with the load frame's x and y axes (`follow` given as
+/// (1, 0, 0), (0, 1, 0)): deflect_for_solve() through the geometry's record of the last one (its values; a
+/// Dual<3> evaluation is recorded without the joint rotations).
+template <class S>
+ContactKinematics<S> walk_deflected(const Whisker& w, const ObjectGeometryB& g, const V3<S>& F_L, const V3<S>& C_L,
+                                    const S& s, FollowerVectors<S>& follow);
+/// The deflected whisker's nodes at a solved load, in the frame of X (B: Placement{}), from the record where it
+/// holds that load's joint rotations (deflected_shape() otherwise).
+void deflected_nodes(const Whisker& w, const ObjectGeometryB& g, const Placement& X, const LoadState& state,
+                     std::vector<Eigen::Vector3d>& nodes);
+/// The kinematics at a solved load (through the record).
+ContactKinematics<double> kinematics_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state);
+
 /// The contact at a solved load (tip: state.arc_length == L).
 ObjectContactPoint contact_point_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state, bool tip,
                                     double sigma);
 
 /// Side of a line core at a configuration: the sign of (c - axis) . (a x t).
 double core_side(const ObjectGeometryB& g, const Eigen::Vector3d& c_B, const Eigen::Vector3d& t_B);
+
+/// r(s) and r'(s) (`slope`) of the whisker's linear taper between nodes.
+double whisker_radius_at(const Whisker& w, double s, double& slope);
+/// The gap of a piece of the loaded link at arc length s whose load point is c_B with the load frame's x and y
+/// axes t_B, y_B (doubles; the solves' piece_gap).
+double piece_gap_at(ClearancePiece piece, const Whisker& w, const ObjectGeometryB& g, double s,
+                    const Eigen::Vector3d& c_B, const Eigen::Vector3d& t_B, const Eigen::Vector3d& y_B);
+/// Whether pieces other than the load point apply (second-order scheme; not a line without radius).
+bool contact_pieces_apply(const Whisker& w, const ObjectGeometryB& g);
+/// The frictionless side load (its axial part from the taper) of normal components F_y, F_z at s.
+LoadState side_load_state(const Whisker& w, const ObjectGeometryB& g, double force_y, double force_z, double s);
 
 /// The rest whisker's deepest point into the object: arc length, gap (< 0 inside), the object's normal there.
 struct DeepestPoint {

@@ -28,6 +28,10 @@ bool all_finite(const Solution& s) {
          std::isfinite(s.surface->friction_force) && std::isfinite(s.surface->clearance) &&
          std::isfinite(s.surface->clearance_arc_length);
   if (s.second_contact_arc_length) ok = ok && std::isfinite(*s.second_contact_arc_length);
+  if (s.second_contact)
+    ok = ok && std::isfinite(s.second_contact->arc_length) && s.second_contact->contact_point_W.allFinite() &&
+         s.second_contact->force_W.allFinite() && s.second_contact->normal_W.allFinite() &&
+         std::isfinite(s.second_contact->normal_force);
   for (const auto& v : {s.normal_force, s.edge_force, s.other_root_arc_length}) ok = ok && (!v || std::isfinite(*v));
   for (const auto& p : s.shape_W) ok = ok && p.allFinite();
   return ok;

@@ -10,5 +10,6 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/frictional_edge.cpp
   ${CMAKE_CURRENT_LIST_DIR}/object_problem.cpp
   ${CMAKE_CURRENT_LIST_DIR}/object_mode.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/two_contact.cpp
   ${CMAKE_CURRENT_LIST_DIR}/frictional_object.cpp
   ${CMAKE_CURRENT_LIST_DIR}/base_wrench.cpp)

@@ -97,6 +97,33 @@ TEST(Kinematics, InvalidProtractionNamesTheField) {
   q.series_time = {0.0, 0.0};
   q.series_dtheta = {0.0, 1.0};
   EXPECT_THROW(validate(q), std::invalid_argument);
+  // Finite but absurd values are refused naming the field (a whisking frequency of 1e308 Hz made the dynamics
+  // take unbounded steps); the bounds themselves are accepted.
+  const auto message = [](const Protraction& bad) {
+    try {
+      validate(bad, "whisking");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  Protraction f;
+  f.frequency = 1e308;
+  EXPECT_NE(message(f).find("whisking.frequency_Hz must lie in [0, 10000], got 1e+308"), std::string::npos) << message(f);
+  f.frequency = 1e4;
+  EXPECT_EQ(message(f), "accepted");
+  Protraction a;
+  a.amplitude = rad(180.5);
+  EXPECT_NE(message(a).find("whisking.amplitude_deg must lie in [-180, 180]"), std::string::npos) << message(a);
+  a.amplitude = -rad(180);
+  EXPECT_EQ(message(a), "accepted");
+  Protraction sp;
+  sp.set_point = rad(1e30);
+  EXPECT_NE(message(sp).find("whisking.set_point_deg"), std::string::npos) << message(sp);
+  Protraction sd;
+  sd.series_time = {0.0, 1.0};
+  sd.series_dtheta = {0.0, rad(400)};
+  EXPECT_NE(message(sd).find("whisking.series.dtheta_deg[1] must lie in [-360, 360]"), std::string::npos) << message(sd);
 }
 
 TEST(Head, PitchRaisesTheNoseYawTurnsItLeftRollLowersTheRightSide) {

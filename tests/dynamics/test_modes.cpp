@@ -191,6 +191,28 @@ TEST(DynamicsModes, PaperSchemeIsRejectedWithItsName) {
   DynamicsProperties bad;
   bad.density = -1.0;
   EXPECT_THROW((void)linear_model(Whisker::from_parabola(0.03, 10.0, straight_props(20)), bad), std::invalid_argument);
+  // Finite but absurd values are refused naming the field (a damping ratio of 1e308 made the integrator run
+  // without end; a density of 1e308 failed inside the eigensolver).
+  const auto message = [](const DynamicsProperties& props) {
+    try {
+      validate(props);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  DynamicsProperties dense;
+  dense.density = 1e308;
+  EXPECT_NE(message(dense).find("dynamics.density must lie in (0, 1e5]"), std::string::npos) << message(dense);
+  DynamicsProperties damped;
+  damped.damping_ratio = 1e308;
+  EXPECT_NE(message(damped).find("dynamics.damping_ratio must lie in [0, 1e6], got 1e+308"), std::string::npos)
+      << message(damped);
+  damped.damping_ratio = 1e6;
+  EXPECT_EQ(message(damped), "accepted");
+  DynamicsProperties slow;
+  slow.joint_damping_time = 1e308;
+  EXPECT_NE(message(slow).find("dynamics.joint_damping_time"), std::string::npos) << message(slow);
 }
 
 }  // namespace

@@ -118,7 +118,10 @@ TEST(MultiView, ThreeCamerasBeatTheBestPair) {
               all.base * 1e6, tf.base * 1e6, ts.base * 1e6, fs.base * 1e6);
   std::printf("reprojection [px] median: 3 views %.3f; pairs %.3f %.3f %.3f; ok %zu %zu %zu %zu\n", all.reprojection,
               tf.reprojection, ts.reprojection, fs.reprojection, all.ok, tf.ok, ts.ok, fs.ok);
-  EXPECT_GE(all.ok, std::size_t(n_frames - 1));  // measured: one frame flagged base_not_reached
+  // Every frame: the base point was once dropped as an outlier in one frame because its intersection in the
+  // side view, where the epipolar line meets the curve's extension at a grazing angle, lay 3.9 px beyond the
+  // base (only its distance across the curve is measured: distance_across_curve).
+  EXPECT_EQ(all.ok, std::size_t(n_frames));
   EXPECT_LT(all.shape, std::min({tf.shape, ts.shape, fs.shape}));
   EXPECT_LT(all.base, std::min({tf.base, ts.base, fs.base}));
 }

@@ -123,7 +123,7 @@ TEST(ObjectContact, NoPointOfTheWhiskerIsInsideOverRandomPosesAndObjects) {
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const Mesh ball_mesh(tessellated_sphere(Eigen::Vector3d::Zero(), 0.003, 3));
-  int converged = 0, second = 0, checked = 0, valid = 0;
+  int converged = 0, second = 0, checked = 0, valid = 0, two = 0;
   for (int i = 0; i < 300; ++i) {
     Pose pose;
     pose.theta = 0.6 * (u(rng) - 0.5);
@@ -160,11 +160,25 @@ TEST(ObjectContact, NoPointOfTheWhiskerIsInsideOverRandomPosesAndObjects) {
     ++converged;
     ++checked;
     const Eigen::Vector3d n = o.shape->nearest(o.X_WO.to_object(s.contact_point_W + 1e-7 * s.surface->normal_W)).normal;
-    EXPECT_LT(s.force_W.normalized().cross(o.X_WO.R_WO * n).norm(), 1e-9) << i;
+    // Two contacts: each force along its own normal (the first's is the total less the second's).
+    const Eigen::Vector3d first = s.second_contact ? Eigen::Vector3d(s.force_W - s.second_contact->force_W) : s.force_W;
+    // At a crease the normal is a cone: a contact held on a mesh's edge whose load point lies just outside the
+    // edge's region (its chord touches the edge) has its force along the edge's normal at the load point, off the
+    // cone's face by an angle whose penetration r a^2 / 2 is below the 1e-9 m clearance (docs/objects.md).
+    const double crease_cone = s.surface->feature == SurfaceFeature::edge ? 1e-2 : 1e-9;
+    EXPECT_LT(first.normalized().cross(o.X_WO.R_WO * n).norm(), crease_cone) << i;
+    if (s.second_contact) {
+      ++two;
+      const Eigen::Vector3d n2 =
+          o.shape->nearest(o.X_WO.to_object(s.second_contact->contact_point_W + 1e-7 * s.second_contact->normal_W)).normal;
+      EXPECT_LT(s.second_contact->force_W.normalized().cross(o.X_WO.R_WO * n2).norm(), 1e-9) << i;
+      EXPECT_GT(s.second_contact->normal_force, 0.0) << i;
+    }
     EXPECT_GE(whisker_clearance(w, o, s), -1e-9) << i << " " << o.shape->type();
   }
   EXPECT_GT(converged, 0.85 * valid);
-  std::cout << "converged " << converged << ", second contact " << second << " of " << valid << "\n";
+  std::cout << "converged " << converged << " (two contacts " << two << "), second contact " << second << " of " << valid
+            << "\n";
 }
 
 TEST(ObjectContact, FrictionZeroIsFrictionlessInfiniteSticksAndSlipMeetsTheCone) {

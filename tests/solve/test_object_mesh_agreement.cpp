@@ -31,7 +31,7 @@ Clearance whisker_clearance(const Whisker& w, const ObjectContact& o, const Solu
 }
 
 struct Agreement {
-  int cases = 0, same_status = 0, both_converged = 0, mesh_second = 0, mesh_slipped = 0;
+  int cases = 0, same_status = 0, both_converged = 0, mesh_second = 0, mesh_slipped = 0, mesh_two = 0, analytic_two = 0;
   std::vector<double> force_error, point_error;  ///< relative force difference, contact point distance [m]
   [[nodiscard]] double largest_point_error() const {
     return point_error.empty() ? 0.0 : *std::max_element(point_error.begin(), point_error.end());
@@ -71,9 +71,19 @@ Agreement compare(const Shape& analytic, const Mesh& mesh, int cases,
     EXPECT_NE(m.status, Status::not_converged) << m.message;
     if (m.status == Status::converged) {
       EXPECT_GE(whisker_clearance(w, tessellated, m).gap, -1e-9);
-      EXPECT_LT(m.force_W.normalized().cross(m.surface->normal_W).norm(), 1e-9);
+      // Each contact's force along its normal, pushing (two contacts: the first's is the total less the second's).
+      const Eigen::Vector3d first = m.second_contact ? Eigen::Vector3d(m.force_W - m.second_contact->force_W) : m.force_W;
+      EXPECT_LT(first.normalized().cross(m.surface->normal_W).norm(), 1e-9);
       EXPECT_GT(*m.normal_force, 0.0);
+      if (m.second_contact) {
+        ++out.mesh_two;
+        const SecondContact& c = *m.second_contact;
+        EXPECT_LT(c.force_W.normalized().cross(c.normal_W).norm(), 1e-9);
+        EXPECT_GT(c.normal_force, 0.0);
+        EXPECT_NEAR(first.dot(m.surface->normal_W), *m.normal_force, 1e-12 * first.norm());
+      }
     }
+    if (a.status == Status::converged && a.second_contact) ++out.analytic_two;
     if (m.status == Status::second_contact) {  // named, and inside
       ++out.mesh_second;
       const Clearance c = whisker_clearance(w, tessellated, m);
@@ -85,7 +95,8 @@ Agreement compare(const Shape& analytic, const Mesh& mesh, int cases,
     }
     if (m.status == Status::slipped_off) ++out.mesh_slipped;
     if (a.status == m.status) ++out.same_status;
-    if (a.status == Status::converged && m.status == Status::converged) {
+    // The same contact compared: single contacts on both (two contacts may settle as one on the other object).
+    if (a.status == Status::converged && m.status == Status::converged && !a.second_contact && !m.second_contact) {
       ++out.both_converged;
       out.force_error.push_back((a.force_W - m.force_W).norm() / a.force_W.norm());
       out.point_error.push_back((a.contact_point_W - m.contact_point_W).norm());
@@ -96,9 +107,9 @@ Agreement compare(const Shape& analytic, const Mesh& mesh, int cases,
 
 void report(const char* what, const Mesh& mesh, const Agreement& g) {
   std::printf("%s, %zu triangles (longest edge %.3g mm): same status %d of %d, second contact %d, slipped off %d, "
-              "median force difference %.3g, largest contact point distance %.3g mm\n",
+              "two contacts %d (analytic %d), median force difference %.3g, largest contact point distance %.3g mm\n",
               what, mesh.triangles().size(), 1e3 * mesh.longest_edge(), g.same_status, g.cases, g.mesh_second,
-              g.mesh_slipped, g.median_force_error(), 1e3 * g.largest_point_error());
+              g.mesh_slipped, g.mesh_two, g.analytic_two, g.median_force_error(), 1e3 * g.largest_point_error());
 }
 
 }  // namespace
@@ -118,7 +129,7 @@ TEST(ObjectMeshAgreement, TessellatedSphereBehavesLikeTheSphere) {
     const Agreement g = compare(ball, mesh, 40, place);
     report("sphere", mesh, g);
     ASSERT_GE(g.both_converged, g.cases / 2);
-    EXPECT_GE(g.same_status, 0.9 * g.cases);  // (measured: 38 and 39 of 40; the issue asks for all)
+    EXPECT_EQ(g.same_status, g.cases);  // (measured: 40 of 40 at both resolutions)
     // The inscribed mesh lies inside the sphere by up to e^2 / (8 R): the contact point within a few of that.
     EXPECT_LT(g.largest_point_error(), 3.0 * mesh.longest_edge());
     if (previous > 0.0) {  // edges halved: the difference a quarter at second order (measured 0.43 of it)
@@ -147,10 +158,11 @@ TEST(ObjectMeshAgreement, TessellatedCylinderBehavesLikeTheCylinder) {
   const Agreement g = compare(peg, mesh, 40, place);
   report("cylinder", mesh, g);
   ASSERT_GE(g.both_converged, g.cases / 2);
-  // (measured: 33 of 40; the issue asks for all: docs/objects.md "Meshes against the analytic objects")
-  EXPECT_GE(g.same_status, 0.8 * g.cases);
+  // (measured: 40 of 40, one of them two contacts on both: docs/objects.md "Meshes against the analytic objects")
+  EXPECT_EQ(g.same_status, g.cases);
   // Along the axis the contact is fixed by the whisker's tangency alone (a facet is straight there, as the
-  // cylinder): it moves with the facet's tilt about the whisker (measured up to 0.32 mm).
-  EXPECT_LT(g.largest_point_error(), 0.25 * R);
+  // cylinder): it moves with the facet's tilt about the whisker (measured up to 0.44 mm: a contact that jumped
+  // to the crease where the whisker entered the mesh, docs/objects.md "Two contacts").
+  EXPECT_LT(g.largest_point_error(), 0.35 * R);
   EXPECT_LT(g.median_force_error(), 0.02);
 }

@@ -85,6 +85,19 @@ struct SurfaceContact {
   double clearance_arc_length = 0.0;
 };
 
+/// The second of two contacts solved together (object modes, frictionless: docs/objects.md, "Two contacts").
+/// The Solution's contact fields (arc_length, contact_point_W, normal_force, surface, state) are the first
+/// contact's; force_W, moment_W, force_magnitude and whisker_frame are the totals at the base; the first contact's
+/// own force is force_W - second_contact->force_W.
+struct SecondContact {
+  double arc_length = 0.0;                                    ///< [m]
+  Eigen::Vector3d contact_point_W = Eigen::Vector3d::Zero();  ///< on the object [m]
+  Eigen::Vector3d force_W = Eigen::Vector3d::Zero();          ///< this contact's force on the whisker [N]
+  Eigen::Vector3d normal_W = Eigen::Vector3d::Zero();         ///< the object's outward unit normal there
+  double normal_force = 0.0;                                  ///< force_W . normal_W [N]
+  SurfaceFeature feature = SurfaceFeature::face;
+};
+
 /// One root of a contact solve (an equilibrium through the same target).
 struct Root {
   double arc_length = 0.0;       ///< s [m]
@@ -119,6 +132,8 @@ struct Solution {
   LoadState state;                     ///< the solved unknowns, for warm starts
   std::optional<SurfaceContact> surface;  ///< object modes: normal, friction direction, tip, clearance
   std::optional<double> second_contact_arc_length;  ///< status second_contact: where the whisker enters the object [m]
+  /// Object modes: a second contact solved with the first (status converged; the totals as SecondContact says).
+  std::optional<SecondContact> second_contact;
 };
 
 }  // namespace vibrissa
