@@ -15,7 +15,8 @@
 // stage's f of the step before). The two implicit stages share the diagonal coefficient d, so their Newton matrices
 // are the same: each is solved by Newton's method on the stage's modal rates; the contacts make the Newton matrix
 // diag + a rank-3 term per contact (Woodbury). Error control (step_control.hpp) by the embedded third-order
-// estimate, filtered through the Newton matrix (stiff components count by their damped response).
+// estimate, filtered through the Newton matrix (stiff components count by their damped response). With friction
+// on any object: Alexander's two-stage SDIRK (same order, all stages implicit) with step doubling (run()).
 #include "nonlinear_simulate.hpp"
 #include "step_control.hpp"
 
@@ -39,6 +40,9 @@ namespace {
 // embedded third-order weights b^ = ((1 - w) / 3, (3w + 1) / 3, d / 3).
 const double d_trbdf2 = 1.0 - 1.0 / std::sqrt(2.0);
 const double w_trbdf2 = std::sqrt(2.0) / 4.0;
+// With friction: Alexander's two-stage SDIRK (gamma = 1 - 1/sqrt 2; L-stable, stiffly accurate, order 2), step
+// doubling (see step_sdirk2).
+const double gamma_sdirk2 = 1.0 - 1.0 / std::sqrt(2.0);
 
 /// One contact's evaluation at a stage.
 struct ContactValue {
@@ -328,6 +332,17 @@ class Integrator {
     return false;
   }
 
+  /// One step of Alexander's SDIRK2 of length h from (t, y) (the objects have friction: see run()).
+  bool step_sdirk2(double t, double h, const State& y, double tol, State& out) {
+    const double g = gamma_sdirk2 * h;
+    State Y1;
+    if (!stage(frame(t + g), g, y.eta, y.rate, y.contacts, y.contact_force, tol, Y1)) return false;
+    // f(Y1) = (Y1 - y) / g; stage 2: Y2 = y + (1 - gamma) h f(Y1) + g f(t + h, Y2).
+    const double w = (1.0 - gamma_sdirk2) / gamma_sdirk2;
+    const Eigen::VectorXd A_eta = y.eta + w * (Y1.eta - y.eta), A_rate = y.rate + w * (Y1.rate - y.rate);
+    return stage(frame(t + h), g, A_eta, A_rate, y.contacts, Y1.contact_force, tol, out);
+  }
+
   /// One TR-BDF2 step of length h from (t, y) into `out`; `err`: the embedded estimate of its local error (energy
   /// norm). Returns false when a stage's Newton iteration does not converge.
   bool step(double t, double h, const State& y, double tol, State& out, double& err) {
@@ -415,18 +430,35 @@ class Integrator {
     record(ts, 0, 0.0, y);
 
     double scale = energy_norm(y.eta, y.rate);
-    State next;
+    // Frictionless: TR-BDF2 with its embedded estimate. With friction: SDIRK2 with step doubling (each step also
+    // taken as two halves, which are kept; their difference / 3 estimates their error), three times the stage
+    // solves: at the slip -> stick transition TR-BDF2's explicit first stage flips the elastic-plastic state back
+    // and forth (docs/dynamics.md, "Integrator").
+    const bool friction = std::any_of(objects_.begin(), objects_.end(),
+                                      [](const LineObstacle& o) { return o.friction_coefficient > 0.0; });
+    State next, full, mid;
     integrate_with_step_control(
         opt_, frames, ts,
         [&](double t, double h) {
           const double tol =
               opt_.relative_tolerance * std::max(scale, energy_norm(y.eta, y.rate)) + opt_.absolute_tolerance;
           double err = 0.0;
+          if (friction) {
+            if (!(step_sdirk2(t, h, y, tol, full) && step_sdirk2(t, 0.5 * h, y, tol, mid) &&
+                  step_sdirk2(t + 0.5 * h, 0.5 * h, mid, tol, next)))
+              return StepAttempt{false, 0.0, tol};
+            return StepAttempt{true, energy_norm(next.eta - full.eta, next.rate - full.rate) / 3.0, tol};
+          }
           if (!step(t, h, y, tol, next, err)) return StepAttempt{false, 0.0, tol};
           return StepAttempt{true, err, tol};
         },
         [&](double t, double h) {
-          note_events(ts, t, h, y, next);
+          if (friction) {
+            note_events(ts, t, 0.5 * h, y, mid);
+            note_events(ts, t + 0.5 * h, 0.5 * h, mid, next);
+          } else {
+            note_events(ts, t, h, y, next);
+          }
           y = next;
           scale = std::max(scale, energy_norm(y.eta, y.rate));
         },

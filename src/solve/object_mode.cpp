@@ -563,8 +563,8 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
     return off;
   }
   Solution out;
-  const ContactKinematics<double> k = kinematics_at(w, g, a.state);
-  fill_solution(w, X, a.state, options, std::nullopt, out, nullptr, &k);
+  const ContactKinematics<double> solved = kinematics_at(w, g, a.state);
+  fill_solution(w, X, a.state, options, std::nullopt, out, nullptr, &solved);
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * w.length();
   if (a.status != Status::converged) {
@@ -646,8 +646,8 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
           const ObjectContactPoint at = contact_point_at(w, g, a.state, false, o.sigma);
           const Eigen::Vector3d p_B = X.R_WB.transpose() * (c.point_W - X.p_W_base);
           SurfacePoint crease = g.query(p_B);
-          for (int i_sample = 1; i_sample < crease_samples && crease.feature == SurfaceFeature::face; ++i_sample) {
-            const SurfacePoint q = g.query(at.c_B + (i_sample / double(crease_samples)) * (p_B - at.c_B));
+          for (int j = 1; j < crease_samples && crease.feature == SurfaceFeature::face; ++j) {
+            const SurfacePoint q = g.query(at.c_B + (j / double(crease_samples)) * (p_B - at.c_B));
             if (q.feature == SurfaceFeature::edge) crease = q;
           }
           if (crease.feature == SurfaceFeature::edge) {
