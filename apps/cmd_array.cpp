@@ -106,9 +106,6 @@ void register_array(CLI::App& app) {
       };
       result = array::simulate_array(config, control);
     }
-    if (config.dynamics)
-      std::cerr << "vibrissa: warning: --dynamics runs in air: the config's objects are not touched (contact during "
-                   "motion is not wired into the array yet)\n";
     std::cout << "simulated " << total << " whisker-frames in " << std::fixed << std::setprecision(2)
               << result.wall_seconds << " s (";
     if (config.dynamics) std::cout << "dynamics: " << result.dynamics_steps << " integrator steps, ";

@@ -4,8 +4,8 @@ z_error while in contact, one line per whisker that touched the object, each in 
 (style.distinct_styles). M_D is unwrapped within each contact. z_error is drawn as |z_error|: its sign,
 sgn(z_edge - z_onset), flips where edge mode's contact point passes the onset height, and the signed curve
 jumps there by twice the bound (the bound itself is continuous); the panel says so.
-A `vibrissa array --dynamics` file (it has tip_displacement_B) is whisking in air: every whisker at every frame,
-F_T and F_x in µN, and the tip's displacement from rest instead of z_error.
+A `vibrissa array --dynamics` file (it has tip_displacement_B): every whisker at every frame (whisking, touching
+the objects or not), F_T and F_x in µN, and the tip's displacement from rest instead of z_error.
 
 usage: array_traces.py ARRAY_H5 OUT.png [--dpi DPI]
 """
@@ -34,7 +34,7 @@ def load(path):
 def build(d):
     t = d["time"] * style.SCALE["ms"]
     rows = DYNAMICS_ROWS if d["dynamics"] else ROWS
-    if d["dynamics"]:  # in air: every whisker, every frame
+    if d["dynamics"]:  # every whisker, every frame
         touched = list(range(len(d["names"])))
     else:
         touched = [w for w in range(len(d["names"])) if (d["state"][w] == 1).any()]
@@ -55,7 +55,10 @@ def build(d):
     if not d["dynamics"]:
         axes[-1].set_title("magnitude of the bound; its sign, sgn($z_{edge} - z_{onset}$), is left out (it flips "
                            "where the edge-mode contact passes the onset height)", fontsize=7, loc="left")
-    what = (f"({len(touched)} whiskers, dynamics in air)" if d["dynamics"] else f"({len(touched)} whiskers touched)")
+    if d["dynamics"]:
+        what = f"({len(touched)} whiskers, dynamics; {int((d['state'] == 1).any(axis=1).sum())} touched)"
+    else:
+        what = f"({len(touched)} whiskers touched)"
     axes[0].set_title(f"Base signals {'while whisking' if d['dynamics'] else 'during contact'}, head pitch "
                       f"{np.degrees(d['pitch']):+.0f}° {what}", pad=8 + 12 * ((len(touched) + 7) // 8))
     if touched:

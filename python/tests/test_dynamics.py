@@ -134,14 +134,31 @@ def test_array_dynamics_in_air():
     cfg = json.loads(vibrissa._vibrissa.default_array_config_json())
     cfg["time"] = {"start_s": 0.0, "end_s": 0.0625, "frames": 126}
     cfg["morphology"]["whiskers"] = ["C1", "D2"]
+    cfg["objects"] = [{"type": "peg", "point_mm": [200, -8, -3]}]  # out of reach
     cfg["solver"]["links"] = 40
     cfg["output"]["render_count"] = 0
     r = vibrissa.simulate_array(cfg, dynamics=True)
-    assert r.summary["dynamics"]["in_air"] and r.summary["dynamics"]["steps"] > 0
+    d = r.summary["dynamics"]
+    assert not d["objects_touched"] and d["events"] == [] and d["steps"] > 0
     assert r.tip_displacement_B.shape == (1, 2, 126, 3)
     assert (r.state == 0).all() and r.MB.max() > 1e-9
     quasi = vibrissa.simulate_array(cfg)
     np.testing.assert_allclose(r.base_W, quasi.base_W, atol=1e-12)
+
+
+def test_array_dynamics_touches_the_peg():
+    # simulate_array(dynamics=True) with the default peg: C2 whisks into it; contact frames and events as the
+    # command writes them (summary.json's "dynamics": "events" per whisker).
+    cfg = json.loads(vibrissa._vibrissa.default_array_config_json())
+    cfg["time"] = {"start_s": 0.0, "end_s": 0.0625, "frames": 126}
+    cfg["morphology"]["whiskers"] = ["C2"]
+    cfg["solver"]["links"] = 40
+    cfg["output"]["render_count"] = 0
+    r = vibrissa.simulate_array(cfg, dynamics=True)
+    d = r.summary["dynamics"]
+    assert d["objects_touched"] and d["events"][0]["whisker"] == "C2R"
+    assert d["events"][0]["events"][0]["type"] == "touch"
+    assert (r.state == 1).sum() > 20 and (r.edge_index[r.state == 1] == 0).all()
 
 
 def test_a_peg_during_whisking_is_touched_then_let_go_at_the_tip():

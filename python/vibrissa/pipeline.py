@@ -274,7 +274,8 @@ class ArrayResult(_NamedArrays):
 
 def simulate_array(config=None, progress=None, threads=None, dynamics=False):
     """Simulates a whisker array exactly as ``vibrissa array`` does (``dynamics=True``: as ``vibrissa array
-    --dynamics``, every whisker through the dynamics integrator, in air; the config's ``"dynamics"`` object sets
+    --dynamics``, every whisker through the dynamics integrator, touching the config's infinite edges and pegs;
+    contact events per whisker in ``summary["dynamics"]["events"]``; the config's ``"dynamics"`` object sets
     density, damping and air drag; docs/dynamics.md).
 
     `config` is a dict (same schema as the JSON file, docs/array.md), a path to a JSON file, or None for the

@@ -30,6 +30,7 @@ struct Prepared {
   std::vector<std::vector<std::vector<PlacedShape>>> shapes;  // [pitch][frame][object] (scenes of surfaces)
   bool surfaces = false;
   std::vector<int> render_index;                 // frame -> index among rendered frames, or -1
+  std::vector<std::vector<dynamics::LineObstacle>> obstacles;  // [pitch][edge] (--dynamics: contact during motion)
 };
 
 void put3(std::vector<double>& v, std::size_t i, const Eigen::Vector3d& x) {
@@ -128,8 +129,35 @@ class PairRun {
   ContactTracker tracker_;
 };
 
-// The run of one whisker at one head pitch through the dynamics integrator (in air): its base follows the head and
-// whisking kinematics; frames are the integrator's outputs at the config's (equally spaced) times.
+// The scene's edges (edges_in_world order) as contacts during motion (dynamics/contact.hpp) for one head pitch:
+// infinite edges and pegs (the integrator's objects are infinite lines fixed in the world), friction mu in the
+// frictional edge mode. Edges that move with a moving head, finite edges (prisms) and surfaces are refused, naming
+// the object.
+std::vector<dynamics::LineObstacle> dynamics_obstacles(const SimulationConfig& c, const Prepared& prep,
+                                                       std::size_t p) {
+  if (prep.surfaces)
+    throw std::invalid_argument("objects: --dynamics touches edges and pegs; surfaces (" + c.objects.front().kind +
+                                ") are not offered in the array's dynamics yet");
+  const double mu = c.mode == ContactMode::frictional_edge ? c.mu : 0.0;
+  const std::vector<EdgeSegment>& first = prep.edges[p].front();
+  std::vector<dynamics::LineObstacle> out;
+  for (std::size_t e = 0; e < first.size(); ++e) {
+    if (first[e].finite())
+      throw std::invalid_argument("objects: --dynamics touches infinite edges and pegs; edge " + std::to_string(e) +
+                                  " is " + fmt(first[e].length * 1e3) + " mm long (a finite edge, a prism's or a "
+                                  "peg's with a height)");
+    for (const std::vector<EdgeSegment>& later : prep.edges[p])
+      if (later[e].p0 != first[e].p0 || later[e].direction != first[e].direction)
+        throw std::invalid_argument("objects: --dynamics needs objects fixed in the world; edge " + std::to_string(e) +
+                                    " moves with the head");
+    out.push_back(dynamics::line_obstacle(first[e].line(), mu));
+  }
+  return out;
+}
+
+// The run of one whisker at one head pitch through the dynamics integrator, with the scene's edges as contacts
+// during motion: its base follows the head and whisking kinematics; frames are the integrator's outputs at the
+// config's (equally spaced) times.
 void run_dynamics(const SimulationConfig& c, const Prepared& prep, ArrayResult& r, std::size_t p, std::size_t w,
                   std::size_t& steps, std::size_t& rejected) {
   const WhiskerSpec& spec = c.morphology.whiskers[w];
@@ -147,6 +175,7 @@ void run_dynamics(const SimulationConfig& c, const Prepared& prep, ArrayResult& 
   o.duration = c.times.back() - t0;
   const bool render_run = p == static_cast<std::size_t>(c.render_pitch);
   o.record_nodes = render_run && !c.render_frames.empty();
+  o.objects = prep.obstacles[p];
   const dynamics::LinearModel model = dynamics::linear_model(rest, props);
   const dynamics::Modes all = dynamics::modes(model, rest);
   const dynamics::TimeSeries ts = dynamics::simulate(
@@ -157,6 +186,7 @@ void run_dynamics(const SimulationConfig& c, const Prepared& prep, ArrayResult& 
                              std::string(dynamics::to_string(ts.status)));
   steps += static_cast<std::size_t>(ts.steps);
   rejected += static_cast<std::size_t>(ts.rejected_steps);
+  r.contact_events[p * r.n_whiskers + w] = ts.events;
   for (std::size_t f = 0; f < r.n_frames; ++f) {
     const std::size_t k = r.index(p, w, f);
     put3(r.base_W, k, ts.placements[f].p_W_base);
@@ -167,6 +197,25 @@ void run_dynamics(const SimulationConfig& c, const Prepared& prep, ArrayResult& 
     put3(r.force_W, k, ts.force_W[f]);
     put3(r.moment_W, k, ts.moment_W[f]);
     put3(r.tip_displacement_B, k, ts.tip_displacement_B[f]);
+    // The contact of the frame: the touching edge with the largest force (the array records one per frame).
+    int touching = -1;
+    for (std::size_t j = 0; j < ts.contacts.size(); ++j)
+      if (ts.contacts[j].state[f] != dynamics::ContactState::none &&
+          (touching < 0 || ts.contacts[j].force_W[f].norm() >
+                               ts.contacts[static_cast<std::size_t>(touching)].force_W[f].norm()))
+        touching = static_cast<int>(j);
+    if (touching >= 0) {
+      const std::size_t e_index = static_cast<std::size_t>(touching);
+      const EdgeSegment& e = prep.edges[p][f][e_index];
+      const Eigen::Vector3d& Fc = ts.contacts[e_index].force_W[f];
+      r.state[k] = static_cast<std::int8_t>(ContactState::contact);
+      r.edge[k] = static_cast<std::int16_t>(e_index);
+      r.s_applied[k] = ts.contacts[e_index].arc_length[f];
+      put3(r.contact_W, k, ts.contacts[e_index].point_W[f]);
+      r.edge_force[k] = Fc.dot(e.direction);
+      r.normal_force[k] = (Fc - r.edge_force[k] * e.direction).norm();
+      r.z_edge[k] = e.coordinate(ts.contacts[e_index].point_W[f]);
+    }
     r.FT[k] = std::hypot(F.y(), F.z());
     r.MB[k] = std::hypot(M.y(), M.z());
     r.FD[k] = std::atan2(F.z(), F.y());
@@ -217,6 +266,8 @@ Prepared prepare(const SimulationConfig& c, ArrayResult& r) {
   prep.render_index.assign(F, -1);
   for (std::size_t i = 0; i < c.render_frames.size(); ++i)
     prep.render_index[static_cast<std::size_t>(c.render_frames[i])] = static_cast<int>(i);
+  if (c.dynamics)
+    for (std::size_t p = 0; p < P; ++p) prep.obstacles.push_back(dynamics_obstacles(c, prep, p));
   return prep;
 }
 
@@ -337,7 +388,10 @@ ArrayResult simulate_array(const SimulationConfig& c, const RunControl& control)
   const long pairs = static_cast<long>(r.n_pitches * r.n_whiskers);
   ProgressCounter counter(control, total);
   std::size_t solves = 0, failed = 0, steps = 0, rejected = 0;
-  if (c.dynamics) r.tip_displacement_B.assign(3 * total, 0.0);
+  if (c.dynamics) {
+    r.tip_displacement_B.assign(3 * total, 0.0);
+    r.contact_events.assign(r.n_pitches * r.n_whiskers, {});
+  }
   std::exception_ptr error;
   std::mutex error_mutex;
   const int threads = c.threads > 0 ? c.threads : omp_get_max_threads();

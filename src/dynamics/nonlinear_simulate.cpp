@@ -105,6 +105,7 @@ class Integrator {
                          const std::vector<ContactState>* frozen = nullptr) {
     q_.noalias() = Phi_ * eta;
     chain_kinematics(w_, q_, kin_);
+    deep_crossing_ = false;
     out.assign(objects_.size(), ContactValue{});
     modal_force.setZero(m_);
     if (U) U->assign(objects_.size(), Eigen::MatrixXd());
@@ -152,7 +153,20 @@ class Integrator {
       const bool interior = !(best_i == 0 && best_u_raw <= 0.0) && !(best_i == last_link && best_u_raw >= 1.0);
       const double side_before = previous[o].side;
       cv.side = interior ? (side_before != 0.0 ? side_before : side) : 0.0;
-      const bool crossed = interior && side_before != 0.0 && side != side_before;
+      // The side only means something near the line: a flip of the sign farther than kMaxCrossing (0.1 mm: a
+      // penalty force of 1 N with the default k_n, far above a whisker's) from it is the nearest point moving
+      // along a curved whisker, and the side is read again; but if the whisker was that near at the step's start,
+      // the step carried it through the line, and the step is refused (the step control shrinks it until the
+      // penalty has caught the whisker, or, at the tip, until the contact has slid off it).
+      constexpr double kMaxCrossing = 1e-4;
+      const bool flipped = interior && side_before != 0.0 && side != side_before;
+      const double reach_here = best_r.norm() - cv.gap;
+      const bool near = best_r.norm() <= reach_here + kMaxCrossing;
+      const bool crossed = flipped && near;
+      if (flipped && !near) {
+        if (previous[o].gap < kMaxCrossing) deep_crossing_ = true;
+        cv.side = side;
+      }
       const double dist = best_r.norm();
       if (crossed) cv.gap = -dist - (dist - cv.gap);  // -(distance) - reach
       cv.point_W = f.base.p_W_base + R * cv.x_B;
@@ -303,7 +317,7 @@ class Integrator {
       const bool any = std::any_of(U.begin(), U.end(), [](const Eigen::MatrixXd& u) { return u.size() != 0; });
       if (!any && it == 0 && out.contact_force.isZero(0.0) && guess.isZero(0.0)) {
         if (U_out) *U_out = U;
-        return true;  // no contact: exact
+        return !deep_crossing_;  // no contact: exact
       }
       const Eigen::VectorXd delta = -solve_newton(D, g, out.contacts, U, r);
       Y += delta;
@@ -312,7 +326,7 @@ class Integrator {
         out.eta = A_eta + g * Y;
         out.rate = Y;
         evaluate_contacts(f, out.eta, Y, previous, out.contacts, out.contact_force, U_out);
-        return true;
+        return !deep_crossing_;
       }
     }
     return false;
@@ -548,6 +562,7 @@ class Integrator {
   Eigen::MatrixXd P_;
   Eigen::Index m_ = 0;
   double kn_ = 0.0, kt_ = 0.0;
+  bool deep_crossing_ = false;  ///< the last evaluation found a line crossed deeper than kMaxCrossing
   std::vector<LineObstacle> objects_;
   Eigen::VectorXd q_;
   Eigen::Matrix<double, Eigen::Dynamic, 3> Jt_;

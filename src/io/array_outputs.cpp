@@ -1,5 +1,6 @@
 #include "vibrissa/io/array_outputs.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -14,6 +15,7 @@
 #include "csv_cells.hpp"
 #include "h5_file.hpp"
 #include "vibrissa/array/sweep.hpp"
+#include "vibrissa/io/dynamics_case.hpp"
 #include "vibrissa/io/figure_files.hpp"
 #include "vibrissa/io/json_file.hpp"
 #include "vibrissa/io/nan_reasons.hpp"
@@ -276,10 +278,19 @@ nlohmann::json array_summary_json(const ArrayResult& r, const SimulationConfig& 
   j["failed_solves"] = r.failed_solves;
   j["simulation_seconds"] = r.wall_seconds;
   if (c.dynamics) {
-    // `vibrissa array --dynamics` (docs/array.md): in air; the base signals are inertial (and drag), not contact.
+    // `vibrissa array --dynamics` (docs/array.md): the base signals are inertial (and drag) and contact; the
+    // contact events of every whisker that touched.
     const dynamics::DynamicsProperties& d = *c.dynamics;
-    j["dynamics"] = {{"in_air", true},
-                     {"objects_touched", false},
+    nlohmann::json events = nlohmann::json::array();
+    for (std::size_t p = 0; p < r.n_pitches; ++p)
+      for (std::size_t w = 0; w < r.n_whiskers; ++w) {
+        const auto& list = r.contact_events[p * r.n_whiskers + w];
+        if (list.empty()) continue;
+        events.push_back({{"pitch_deg", to_deg(r.pitches[p])}, {"whisker", r.labels[w]},
+                          {"events", contact_events_json(list)}});
+      }
+    j["dynamics"] = {{"objects_touched", std::any_of(r.state.begin(), r.state.end(), [](std::int8_t v) { return v != 0; })},
+                     {"events", std::move(events)},
                      {"density", d.density},
                      {"damping_ratio", d.damping_ratio},
                      {"air_drag", d.air_drag},

@@ -38,6 +38,15 @@ double number_or(const json& j, const char* key, const std::string& where, doubl
 
 }  // namespace
 
+json contact_events_json(const std::vector<dynamics::ContactEvent>& list) {
+  json events = json::array();
+  for (const dynamics::ContactEvent& e : list)
+    events.push_back({{"time", e.time}, {"type", std::string(to_string(e.type))}, {"object", e.object},
+                      {"arc_length", e.arc_length}, {"point_W", {e.point_W.x(), e.point_W.y(), e.point_W.z()}},
+                      {"force_W", {e.force_W.x(), e.force_W.y(), e.force_W.z()}}});
+  return events;
+}
+
 dynamics::BaseTrajectory whisking_trajectory(const Pose& pose, const Whisking& w) {
   return dynamics::trajectory_from_placements([pose, w](double t) {
     const double d = w.protraction(t);
@@ -430,12 +439,7 @@ json dynamics_summary(const dynamics::TimeSeries& ts, const dynamics::Modes& mod
   j["peak_tip_displacement_mm"] = tip * 1e3;
   j["model"] = std::string(to_string(ts.model));
   j["max_penetration_m"] = ts.max_penetration;
-  json events = json::array();
-  for (const dynamics::ContactEvent& e : ts.events)
-    events.push_back({{"time", e.time}, {"type", std::string(to_string(e.type))}, {"object", e.object},
-                      {"arc_length", e.arc_length}, {"point_W", {e.point_W.x(), e.point_W.y(), e.point_W.z()}},
-                      {"force_W", {e.force_W.x(), e.force_W.y(), e.force_W.z()}}});
-  j["events"] = std::move(events);
+  j["events"] = contact_events_json(ts.events);
   // The linear model holds about the rest shape (docs/dynamics.md): say so when the deflection leaves that range.
   json warnings = json::array();
   const double L = c.whisker.length();

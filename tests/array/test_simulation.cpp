@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <set>
 
@@ -292,6 +293,7 @@ TEST(ArrayConfig, PhiMethodSelectsTheTowalElevation) {
 TEST(ArrayDynamics, BasesFollowTheArrayKinematicsAndStillWhiskersCarryNothing) {
   json j = base_config();
   j["morphology"]["whiskers"] = json::array({"C1", "D2"});
+  j["objects"] = json::array({{{"type", "peg"}, {"point_mm", {200.0, -8.0, -3.0}}}});  // out of reach: in air
   j["time"] = {{"start_s", 0.03}, {"end_s", 0.0925}, {"frames", 126}};
   j["head"]["pitches_deg"] = json::array({0.0, 10.0});
   j["solver"]["links"] = 40;
@@ -309,7 +311,7 @@ TEST(ArrayDynamics, BasesFollowTheArrayKinematicsAndStillWhiskersCarryNothing) {
   }
   EXPECT_GT(peak, 1e-9);  // tens of nN m: a whisk's inertia
   EXPECT_GT(dyn.dynamics_steps, 0u);
-  EXPECT_TRUE(array_warnings(dyn).empty());
+  ASSERT_EQ(array_warnings(dyn).size(), 1u);  // nothing touched: the scene is out of reach (as without dynamics)
   // No whisking and a still head: the follicle carries nothing (to rounding).
   j["whisking"]["amplitude_deg"] = 0.0;
   const ArrayResult still = simulate_array(io::array_config_from_json(j));
@@ -317,3 +319,50 @@ TEST(ArrayDynamics, BasesFollowTheArrayKinematicsAndStillWhiskersCarryNothing) {
   j["dynamics"] = {{"density", -1.0}};
   expect_config_error(j, "dynamics.density");
 }
+
+namespace vibrissa::array {
+namespace {
+
+// `vibrissa array --dynamics` against the array's objects (docs/dynamics.md, "vibrissa array --dynamics"): C2
+// whisks into the default peg (an infinite edge, world-fixed); the integrator touches it where the quasi-static
+// run does (onset within a frame), the frames in contact carry the contact (edge, arc length, point on the edge)
+// and the base moment peaks within 2 % of the quasi-static peak (8 Hz whisking: inertia and the joint dampers
+// add little to a contact moment); the events are recorded per whisker.
+TEST(ArrayDynamics, AWhiskerWhiskingIntoThePegTouchesItAsTheQuasiStaticRunDoes) {
+  json j = base_config();
+  j["morphology"]["whiskers"] = json::array({"C2"});
+  j["solver"]["links"] = 40;
+  j["time"] = {{"start_s", 0.0}, {"end_s", 0.0625}, {"frames", 126}};
+  const ArrayResult quasi = simulate_array(io::array_config_from_json(j));
+  j["dynamics"] = json::object();
+  const ArrayResult dyn = simulate_array(io::array_config_from_json(j));
+  const int onset = first_frame(quasi, 0, ContactState::contact);
+  ASSERT_GE(onset, 0);
+  ASSERT_EQ(dyn.contact_events.size(), 1u);
+  const auto& events = dyn.contact_events[0];
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.front().type, dynamics::ContactEventType::touch);
+  const double frame = dyn.times[1] - dyn.times[0];
+  EXPECT_LE(events.front().time, quasi.times[static_cast<std::size_t>(onset)]);
+  EXPECT_GT(events.front().time, quasi.times[static_cast<std::size_t>(onset)] - frame);
+  double peak_quasi = 0.0, peak_dyn = 0.0;
+  int both = 0;
+  for (std::size_t f = 0; f < dyn.n_frames; ++f) {
+    peak_quasi = std::max(peak_quasi, quasi.MB[f]);
+    peak_dyn = std::max(peak_dyn, dyn.MB[f]);
+    if (dyn.state_at(0, 0, f) != ContactState::contact) continue;
+    EXPECT_EQ(dyn.edge[f], 0);
+    EXPECT_GT(dyn.s_applied[f], 0.0);
+    // The contact point lies on the peg's line (x = 20 mm, y = -8 mm), to the penalty's penetration.
+    EXPECT_NEAR(dyn.contact_W[3 * f], 0.020, 1e-6);
+    EXPECT_NEAR(dyn.contact_W[3 * f + 1], -0.008, 1e-6);
+    if (quasi.state_at(0, 0, f) == ContactState::contact) ++both;
+  }
+  EXPECT_GT(both, 20);
+  EXPECT_NEAR(peak_dyn, peak_quasi, 0.02 * peak_quasi);
+  std::printf("C2 into the peg: touch at %.4f s (quasi-static onset frame %.4f s), peak M_B %.4g vs %.4g N m\n",
+              events.front().time, quasi.times[static_cast<std::size_t>(onset)], peak_dyn, peak_quasi);
+}
+
+}  // namespace
+}  // namespace vibrissa::array

@@ -303,10 +303,15 @@ TEST(DynamicsContact, SlowSweepAgainstAFrictionalEdgeConvergesToTheQuasiStaticFr
     const BaseTrajectory base = smooth_sweep(0.2, T);
     const TimeSeries ts = simulate(w, model, all, base, dp.gravity_W, opt);
     ASSERT_EQ(ts.status, SimulationStatus::completed);
-    // touch, slip, stick: no chatter of stick/slip pairs, no release.
-    ASSERT_EQ(ts.events.size(), 3u);
+    // touch, slip, stick, without release; at most one more slip/stick pair, within 1 ms of the first stick (the
+    // slip -> stick transition; no chatter through the stick phase).
+    ASSERT_GE(ts.events.size(), 3u);
+    ASSERT_LE(ts.events.size(), 5u);
+    EXPECT_EQ(ts.events[0].type, ContactEventType::touch);
     EXPECT_EQ(ts.events[1].type, ContactEventType::slip);
     EXPECT_EQ(ts.events[2].type, ContactEventType::stick);
+    EXPECT_EQ(ts.events.back().type, ContactEventType::stick);
+    EXPECT_LT(ts.events.back().time - ts.events[2].time, 1e-3);
     const Comparison c = against_quasi_static(w, base, ob, ts);
     // The static sequence slips, then sticks, as the dynamics.
     ASSERT_FALSE(c.friction.empty());

@@ -15,6 +15,7 @@
 #include "vibrissa/array/head.hpp"
 #include "vibrissa/contact/tracker.hpp"
 #include "vibrissa/core/run_control.hpp"
+#include "vibrissa/dynamics/contact.hpp"
 #include "vibrissa/dynamics/linear_model.hpp"
 #include "vibrissa/array/kinematics.hpp"
 #include "vibrissa/array/morphology.hpp"
@@ -42,8 +43,9 @@ struct SimulationConfig {
   int render_pitch = 0;            ///< index into `pitches` of the rendered run
   int threads = 0;                 ///< OpenMP threads (0: all)
   /// `vibrissa array --dynamics` (docs/array.md, docs/dynamics.md): every whisker driven by the whisking and head
-  /// motion through the dynamics integrator (dynamics/simulate.hpp), in air: the objects are not touched (contact
-  /// during motion is not wired into the array yet). Frames must then be equally spaced.
+  /// motion through the dynamics integrator (dynamics/simulate.hpp), touching the scene's infinite edges and pegs
+  /// fixed in the world as contacts during motion (friction mu in the frictional edge mode). Frames must then be
+  /// equally spaced.
   std::optional<dynamics::DynamicsProperties> dynamics;
 };
 
@@ -89,6 +91,9 @@ struct ArrayResult {
   /// With dynamics: tip displacement from rest in the whisker frame [m] (x3), and integrator steps per run.
   std::vector<double> tip_displacement_B;
   std::size_t dynamics_steps = 0, dynamics_rejected_steps = 0;
+  /// With dynamics: the contact events (touch, slip, stick, release; `object` indexes the edges) of each run,
+  /// [pitch * n_whiskers + whisker], in time order (times from the first frame).
+  std::vector<std::vector<dynamics::ContactEvent>> contact_events;
 
   std::size_t solves = 0;          ///< edge solves performed
   std::size_t failed_solves = 0;   ///< solves that ended not_converged (counted as pushed past)

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -45,6 +46,10 @@ struct DynamicsCase {
 /// The "dynamics" object of a case (or of an array config): density, damping_ratio | joint_damping_time, gravity,
 /// air_drag, air_density, air_kinematic_viscosity; errors name the field and value.
 dynamics::DynamicsProperties dynamics_properties_from_json(const nlohmann::json& d);
+
+/// Contact events as summary.json lists them (`vibrissa dynamics`, `vibrissa array --dynamics`): time [s], type,
+/// object, arc_length [m], point_W [m], force_W [N].
+nlohmann::json contact_events_json(const std::vector<dynamics::ContactEvent>& events);
 
 /// Reads {"whisker": {...as in solve...}, "dynamics": {...}, "whisking": {...}, "initial": {...}, "duration",
 /// "output_rate", "relative_tolerance", "absolute_tolerance", "modes"}; errors name the field and value.
