@@ -534,10 +534,9 @@ void two_contact_solution(const Whisker& w, const Placement& X, const TwoContact
   second.feature = two.feature[1];
   out.second_contact = second;
   out.second_contact_arc_length.reset();
-  if (!out.shape_W.empty()) {
-    out.shape_W.clear();
-    for (const auto& p : two.nodes_B) out.shape_W.push_back(X.to_world(p));
-  }
+  // The shape always (the state holds the first contact's load alone: deflected_shape() of it is not this one).
+  out.shape_W.clear();
+  for (const auto& p : two.nodes_B) out.shape_W.push_back(X.to_world(p));
   set_status(out, Status::converged, "two contacts on the whisker's side");
 }
 
