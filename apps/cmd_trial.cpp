@@ -31,6 +31,7 @@ struct TrialArgs {
   double mu = 0.0, mu_eq7 = 0.0;  ///< used only when given (trial::run_options checks them)
   trial::TrialFlags flags;
   bool no_figures = false;
+  bool all_figures = false;    ///< figures: also the slower ones left out by default (trial_figures.py --all)
   std::vector<double> window;  ///< figures: time series over [start, end] s
   int whisk = 0;               ///< figures: time series over contact period `whisk` (from 1)
   int figure_dpi = 0;          ///< figures: PNG resolution (0: the script's default)
@@ -43,6 +44,7 @@ std::vector<std::string> figure_flags(const TrialArgs& a) {
     flags.insert(flags.end(), {"--window", std::to_string(a.window[0]) + ',' + std::to_string(a.window[1])});
   if (a.whisk > 0) flags.insert(flags.end(), {"--whisk", std::to_string(a.whisk)});
   if (a.figure_dpi > 0) flags.insert(flags.end(), {"--dpi", std::to_string(a.figure_dpi)});
+  if (a.all_figures) flags.emplace_back("--all");
   return flags;
 }
 /// One trial's line of the summary table.
@@ -104,6 +106,14 @@ std::string summary_table(const std::vector<SummaryRow>& rows) {
 SummaryRow analyse(const TrialArgs& a, const std::string& trial_path, const std::filesystem::path& out,
                    const trial::TrialRunOptions& run_opts) {
   namespace fs = std::filesystem;
+  // The figure script starts now and waits: Python's start-up overlaps the solve (docs/performance.md).
+  std::unique_ptr<EarlyFigureScript> figure_script;
+  if (!a.no_figures) {
+    std::vector<std::string> args = {(out / "frames.h5").string(), (out / "summary.json").string(),
+                                     (out / io::kTrialFiguresFolder).string()};
+    for (std::string& f : figure_flags(a)) args.push_back(std::move(f));
+    figure_script = std::make_unique<EarlyFigureScript>("trial_figures.py", args);
+  }
   const trial::Trial tr = io::read_trial(trial_path);
   for (const std::string& w : trial::trial_warnings(tr)) std::cerr << "vibrissa trial: warning: " << w << "\n";
   const std::size_t contact = trial::contact_frame_count(tr);
@@ -145,12 +155,9 @@ SummaryRow analyse(const TrialArgs& a, const std::string& trial_path, const std:
     std::cout << "  eq. (6) fit: slope " << analysis.z_error->fit_eq6.all->slope << ", r2 "
               << analysis.z_error->fit_eq6.all->r2 << "\n";
   std::cout << "  results in " << out.string() << "\n";
-  if (!a.no_figures) {
-    const fs::path figures = out / io::kTrialFiguresFolder;
-    fs::create_directories(figures);
-    std::vector<std::string> args = {(out / "frames.h5").string(), (out / "summary.json").string(), figures.string()};
-    for (std::string& f : figure_flags(a)) args.push_back(std::move(f));
-    run_figure_script("trial_figures.py", args);
+  if (figure_script) {
+    fs::create_directories(out / io::kTrialFiguresFolder);
+    figure_script->run();
   }
   return row;
 }
@@ -178,7 +185,12 @@ void register_trial(CLI::App& app) {
   cmd->add_flag("--no-roll-fit", a->flags.no_roll_fit, "use the tracked zeta in contact frames instead of the theta fit");
   cmd->add_flag("--rest-shape-per-contact", a->flags.rest_shape_per_contact,
                 "use the tracked shape at the end of each contact period as its undeflected shape (spec §2.3)");
-  cmd->add_flag("--no-figures", a->no_figures, "skip the PNG figures (an older run's figures/ is removed)");
+  auto* no_figures =
+      cmd->add_flag("--no-figures", a->no_figures, "skip the PNG figures (an older run's figures/ is removed)");
+  cmd->add_flag("--all-figures", a->all_figures,
+                "figures: also draw fig3a_world_signals.png and fig2bcd_shape_height_arclength.png (left out by "
+                "default to keep the figures fast; docs/trials.md)")
+      ->excludes(no_figures);
   auto* window = cmd->add_option("--window", a->window,
                                  "figures: draw the time series over START_S,END_S (seconds of the trial clock; "
                                  "default: whole trial up to 2 s, else the first second of contact)")

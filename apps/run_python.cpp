@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -52,18 +54,58 @@ std::string python_interpreter() {
 
 }  // namespace
 
-int run_figure_script(const std::string& script, const std::vector<std::string>& args) {
+namespace {
+// The shell command running figure script `script` with `args`, or "" (after a warning) if it is missing.
+std::string figure_command(const std::string& script, const std::vector<std::string>& args) {
   const std::filesystem::path path = figures_dir() / script;
   if (!std::filesystem::exists(path)) {
     std::cerr << "vibrissa: warning: figure script not found: " << path << " (figures skipped)\n";
-    return 2;
+    return {};
   }
   std::ostringstream cmd;
   cmd << quote(python_interpreter()) << ' ' << quote(path.string());
   for (const auto& a : args) cmd << ' ' << quote(a);
-  const int rc = std::system(cmd.str().c_str());
+  return cmd.str();
+}
+
+int report_figure_status(const std::string& script, int rc) {
   if (rc != 0) std::cerr << "vibrissa: warning: figure script " << script << " failed (exit " << rc << ")\n";
   return rc;
+}
+}  // namespace
+
+int run_figure_script(const std::string& script, const std::vector<std::string>& args) {
+  const std::string cmd = figure_command(script, args);
+  if (cmd.empty()) return 2;
+  return report_figure_status(script, std::system(cmd.c_str()));
+}
+
+EarlyFigureScript::EarlyFigureScript(const std::string& script, const std::vector<std::string>& args)
+    : script_(script) {
+  std::vector<std::string> all = args;
+  all.emplace_back("--start-on-stdin");
+  const std::string cmd = figure_command(script, all);
+  if (cmd.empty()) return;
+  std::cout.flush();  // the script shares standard output
+  pipe_ = ::popen(cmd.c_str(), "w");
+  if (pipe_ == nullptr) std::cerr << "vibrissa: warning: cannot start figure script " << script << ": " << std::strerror(errno) << "\n";
+}
+
+EarlyFigureScript::~EarlyFigureScript() {
+  if (pipe_ != nullptr) ::pclose(pipe_);  // end of input without "go": the script exits drawing nothing
+}
+
+int EarlyFigureScript::run() {
+  if (pipe_ == nullptr) return 2;
+  std::cout.flush();
+  // A script that already died (e.g. an import error) closed its end: a write must then fail, not raise SIGPIPE.
+  void (*previous)(int) = std::signal(SIGPIPE, SIG_IGN);
+  std::fputs("go\n", pipe_);
+  std::fflush(pipe_);
+  std::signal(SIGPIPE, previous);
+  const int rc = ::pclose(pipe_);
+  pipe_ = nullptr;
+  return report_figure_status(script_, rc);
 }
 
 void run_figure_scripts(const std::vector<FigureScript>& scripts) {

@@ -1,6 +1,7 @@
 // Dynamics (issue 27, docs/dynamics.md): one whisker, N = 100, 1 s of whisking in air at 8 Hz (30 deg
 // amplitude) with 1 kHz output, default tolerance; the model and modes, the integration alone, and the whole; and
-// the same against a peg (frictionless, and mu = 0.3).
+// the same against a frictionless peg (issue 27 point 7). With friction (mu = 0.3) the stick phases still take the
+// integrator to very small steps (docs/dynamics.md, "Not done"): that case is not benchmarked until they are fixed.
 //   build/bench/bench_dynamics --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -80,7 +81,7 @@ void BM_Integrate1sWhiskingAgainstAPeg(benchmark::State& state) {
   state.counters["steps"] = static_cast<double>(steps);
   state.counters["events"] = static_cast<double>(events);
 }
-BENCHMARK(BM_Integrate1sWhiskingAgainstAPeg)->Arg(0)->Arg(3)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_Integrate1sWhiskingAgainstAPeg)->Arg(0)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_Whole1sWhisking(benchmark::State& state) {
   const Whisker w = bench_whisker();

@@ -2,14 +2,17 @@
 """Figures of `vibrissa trial` mirroring Huet & Hartmann 2016 Figs. 2b-f, 3a-e and 4b.
 
 usage: trial_figures.py FRAMES.h5 SUMMARY.json OUTDIR [--window START_S,END_S | --whisk N] [--dpi DPI]
+                        [--all] [--jobs N] [--start-on-stdin]
 
 Reads the per-frame table written by `vibrissa trial` (frames.h5, one dataset per column) and its
 summary.json. Fit lines and their numbers are those of summary.json (never refitted here). Time series (Figs. 2b-d, 3a, 3b) show a time
 window: --window START_S,END_S (seconds, trial clock), --whisk N (contact period N, from 1), or by default the
 whole trial if it lasts at most OVERVIEW_MAX_S, else WINDOW_S from the first contact. fig3b_per_whisk.png
 overlays every whisk of the trial, aligned at contact onset. F_D and M_D are unwrapped within each whisk.
+fig3a_world_signals.png and fig2bcd_shape_height_arclength.png are drawn with --all only (EXTRA_FIGURES).
 """
 import json
+import os
 import sys
 
 import h5py
@@ -32,6 +35,7 @@ WHISKER_ROWS = (("Fx_B", "mN", "$F_x$"), ("FT", "mN", "$F_T$"), ("FD", "deg", "$
 OVERLAY_ROWS = (("FT", "mN", "$F_T$"), ("MB", "µN·m", "$M_B$"), ("FD", "deg", "$F_D$"),
                 ("MD", "deg", "$M_D$"))
 ANGLES = ("FD", "MD")  # [rad] in frames.h5, drawn in degrees
+TITLE_MAX_CHARS = 90  # of a 9 pt title line across a figure 7 in wide
 
 
 def load(path):
@@ -64,20 +68,28 @@ def angle_mask(d, prefix, name):
     return ok
 
 
+def mode_signals(d, modes, name, unit):
+    """{mode prefix: column `name` of that mode in display units} for the modes that have it; angles masked
+    where undefined (angle_mask), unwrapped per contact period, the modes after the first one drawn on the
+    first one's branch (its unwrapped angles computed once, as the reference of the others)."""
+    out, ref = {}, None
+    for m in modes:
+        column = m["prefix"] + name
+        if column not in d:
+            continue
+        if name not in ANGLES:
+            out[m["prefix"]] = d[column] * style.SCALE[unit]
+            continue
+        masked = np.where(angle_mask(d, m["prefix"], name), np.degrees(d[column]), np.nan)
+        out[m["prefix"]] = style.unwrap_deg(masked, d["period"], reference=ref)
+        if m is modes[0]:
+            ref = out[m["prefix"]]
+    return out
+
+
 def signal(d, modes, mode, name, unit):
-    """Column `name` of `mode` in display units; angles masked where undefined (angle_mask), unwrapped per
-    contact period, the modes after the first one drawn on the first one's branch."""
-    v = d[mode["prefix"] + name]
-    if name not in ANGLES:
-        return v * style.SCALE[unit]
-
-    def masked(m):
-        return np.where(angle_mask(d, m["prefix"], name), np.degrees(d[m["prefix"] + name]), np.nan)
-
-    ref = None
-    if mode is not modes[0]:
-        ref = style.unwrap_deg(masked(modes[0]), d["period"])
-    return style.unwrap_deg(masked(mode), d["period"], reference=ref)
+    """mode_signals of one mode (drawn on the branch of modes[0])."""
+    return mode_signals(d, [mode] if mode is modes[0] else [modes[0], mode], name, unit)[mode["prefix"]]
 
 
 # --- time windows ---------------------------------------------------------------------------------------
@@ -131,12 +143,17 @@ def time_series(d, modes, rows, window, title):
     sel = (d["time"] >= start) & (d["time"] <= end)
     t = d["time"][sel] * style.SCALE[unit]
     fig, axes = plt.subplots(len(rows), 1, figsize=(style.PAPER_WIDTH_IN, 1.45 * len(rows) + 0.9), sharex=True)
-    style.fixed_layout(fig, top_in=0.55 if any(name in ANGLES for name, _, _ in rows) else 0.4, hspace=0.18)
+    # the title's lines: title and span (on two lines when one would not fit 7 in), and the note on masked angles
+    lines = [f"{title} — {what}"] if len(title) + len(what) <= TITLE_MAX_CHARS else [title, what]
+    if any(name in ANGLES for name, _, _ in rows):
+        lines.append(f"({ANGLE_MASK_NOTE})")
+    style.fixed_layout(fig, top_in=0.2 + 0.17 * len(lines), hspace=0.18)
     for ax, (name, u, quantity) in zip(axes, rows):
         drawn = False
+        ys = mode_signals(d, modes, name, u)
         for m in modes:
-            if m["prefix"] + name in d:
-                y = signal(d, modes, m, name, u)[sel]
+            if m["prefix"] in ys:
+                y = ys[m["prefix"]][sel]
                 ax.plot(t, y, **style.mode_line(m))
                 drawn |= bool(np.isfinite(y).any())
         if not drawn:
@@ -147,10 +164,7 @@ def time_series(d, modes, rows, window, title):
         ax.set_ylabel(style.label(quantity, u))
     axes[-1].set_xlabel(style.label("time", unit))
     axes[-1].set_xlim(start * style.SCALE[unit], end * style.SCALE[unit])
-    if any(name in ANGLES for name, _, _ in rows):
-        fig.suptitle(f"{title} — {what}\n({ANGLE_MASK_NOTE})", fontsize=9)
-    else:
-        fig.suptitle(f"{title} — {what}")
+    fig.suptitle("\n".join(lines), fontsize=9)
     mode_legend(fig, modes)
     return fig
 
@@ -174,7 +188,11 @@ def scatter_fit(x, y, used, fits, labels, title):
     """Fig. 2e/2f/4b: predicted vs measured [mm] with the summary's fit(s) and the identity line; axes span
     the data. `used` marks the points the fit used; the others are drawn as excluded. A fit that is None
     is left out."""
-    fig, ax = plt.subplots(figsize=(0.6 * style.PAPER_WIDTH_IN, 0.6 * style.PAPER_WIDTH_IN + 1.6))
+    # fixed margins (no tight-layout passes): a square axes, the legend (up to seven lines) in the 1.9 in below it
+    width = 0.6 * style.PAPER_WIDTH_IN
+    top = 0.35 + 0.17 * title.count("\n")
+    fig, ax = plt.subplots(figsize=(width, width - 0.85 + top + 1.9))
+    style.fixed_layout(fig, left_in=0.7, right_in=0.15, top_in=top, bottom_in=1.9, legend_in=0.0)
     ok = np.isfinite(x) & np.isfinite(y)
     ax.scatter(x[ok & used], y[ok & used], s=7, alpha=0.45, lw=0, color=style.DATA["color"],
                marker=style.DATA["marker"], label=f"frames in the fit ({int((ok & used).sum())})", gid="used")
@@ -215,7 +233,7 @@ def kinematic_figure(d, summary):
     fit = (summary.get("kinematic_prediction") or {}).get("fit")
     fig, ax = scatter_fit(d["tracked_height"] * style.SCALE["mm"], d["kinematic_height"] * style.SCALE["mm"],
                           d["period"] >= 0, (fit,), ("fit",),
-                          "Fig. 2f: contact height predicted from non-contact kinematics")
+                          "Fig. 2f: contact height predicted\nfrom non-contact kinematics")
     ax.set_xlabel(style.label("tracked contact height", "mm"))
     ax.set_ylabel(style.label("kinematic prediction", "mm"))
     return fig
@@ -230,8 +248,9 @@ def per_whisk_figure(d, modes):
     alpha = float(np.clip(6.0 / max(periods, 1), 0.12, 0.8))
     starts = [np.flatnonzero(d["period"] == p) for p in range(periods)]
     for ax, (name, unit, quantity) in zip(axes, OVERLAY_ROWS):
+        vs = mode_signals(d, modes, name, unit)
         for m in modes:
-            v = signal(d, modes, m, name, unit)
+            v = vs[m["prefix"]]
             # one LineCollection per mode and panel (not a Line2D per whisk): drawn in one pass
             segments = [np.column_stack([(d["time"][idx] - d["time"][idx[0]]) * style.SCALE["ms"], v[idx]])
                         for idx in starts if idx.size]
@@ -256,6 +275,7 @@ def friction_figure(d, summary, window):
     fr = summary.get("friction") or {}
     unit = time_axis(start, end)
     fig, axes = plt.subplots(1, 3, figsize=(style.PAPER_WIDTH_IN, 2.8))
+    style.fixed_layout(fig, left_in=0.6, right_in=0.3, top_in=0.5, bottom_in=0.45, legend_in=0.0, wspace=0.5)
     ax = axes[0]
     ax.plot(t[used] * style.SCALE[unit], mu[used], ls="none", marker="o", ms=2, color=style.OKABE_ITO["blue"],
             label="used")
@@ -315,25 +335,35 @@ def friction_figure(d, summary, window):
     return fig
 
 
-def builders(d, summary, window=None, whisk=None):
-    """{file name: function drawing that Figure} of every figure the data allow (drawn in parallel by main)."""
+# Drawn only when asked for (`vibrissa trial --all-figures`, `--all` here, TrialResult.figures(all_figures=True)):
+# the world-frame signals and the shape/height/arc-length series, two of the three slowest figures, so that the
+# default set is drawn in about the time the trial takes to analyse (docs/performance.md).
+EXTRA_FIGURES = ("fig3a_world_signals.png", "fig2bcd_shape_height_arclength.png")
+
+
+def builders(d, summary, window=None, whisk=None, all_figures=True):
+    """{file name: function drawing that Figure} of every figure the data allow (drawn in parallel by main);
+    without `all_figures`, those of EXTRA_FIGURES are left out."""
     modes = present_modes(d)
     span = select_window(d, window, whisk)
+    # slowest first (save_all's processes take them in this order)
     figs = {
         "fig3b_whisker_signals.png": lambda: time_series(d, modes, WHISKER_ROWS, span, "Fig. 3b: whisker frame"),
         "fig3a_world_signals.png": lambda: time_series(d, modes, WORLD_ROWS, span, "Fig. 3a: world frame"),
-        "fig2bcd_shape_height_arclength.png": lambda: time_series(
-            d, modes, SHAPE_ROWS, span, "Figs. 2b–d: shape error, contact height, arc length of contact"),
     }
     if (d["period"] >= 0).any():
         figs["fig3b_per_whisk.png"] = lambda: per_whisk_figure(d, modes)
     if "mu" in d:
         figs["fig3cde_friction.png"] = lambda: friction_figure(d, summary, span)
+    figs["fig2bcd_shape_height_arclength.png"] = lambda: time_series(
+        d, modes, SHAPE_ROWS, span, "Figs. 2b–d: shape error, contact height, arc length of contact")
     if "z_error" in d:
         figs["fig2e_z_error_eq6.png"] = lambda: z_error_figure(d, summary, "eq6", "Fig. 2e: eq. (6), contact-point mode")
         figs["fig4b_z_error_eq7.png"] = lambda: z_error_figure(d, summary, "eq7", "Fig. 4b: eq. (7), edge mode only")
     if "tracked_height" in d and np.isfinite(d["kinematic_height"]).any():
         figs["fig2f_kinematic_prediction.png"] = lambda: kinematic_figure(d, summary)
+    if not all_figures:
+        figs = {name: draw for name, draw in figs.items() if name not in EXTRA_FIGURES}
     return figs
 
 
@@ -352,13 +382,31 @@ def main(argv=None):
     group.add_argument("--whisk", type=int, help="time series over contact period N (from 1)")
     parser.add_argument("--jobs", type=int, default=0,
                         help="processes drawing figures side by side (default: one per CPU)")
+    parser.add_argument("--all", action="store_true",
+                        help="also draw " + " and ".join(EXTRA_FIGURES) + " (left out by default: slower)")
+    parser.add_argument("--start-on-stdin", action="store_true",
+                        help="wait for the line 'go' on standard input before reading the data (anything else, "
+                             "or the end of input, exits drawing nothing): `vibrissa trial` starts this script "
+                             "before it solves, so that Python's start-up and imports overlap the solve")
     args = parser.parse_args(argv)
     style.apply()
+    if args.start_on_stdin:
+        try:
+            go = sys.stdin.readline().strip() == "go"
+        except KeyboardInterrupt:  # Ctrl-C while vibrissa trial was solving: it reports the interruption
+            sys.exit(130)
+        if not go:
+            return
     d = load(args.frames_h5)
     with open(args.summary_json) as f:
         summary = json.load(f)
-    style.save_all(builders(d, summary, args.window, args.whisk), args.outdir, dpi=args.dpi, jobs=args.jobs)
+    style.save_all(builders(d, summary, args.window, args.whisk, all_figures=args.all), args.outdir, dpi=args.dpi, jobs=args.jobs)
 
 
 if __name__ == "__main__":
     main()
+    # The figures are written (by the processes save_all waited for): leave without tearing down the modules,
+    # which takes ~0.05 s of CPU with matplotlib loaded and only delays the caller.
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0)

@@ -186,6 +186,105 @@ def test_pitch_sweep_text_is_at_least_7_pt_for_62_whiskers():
     plt.close(fig)
 
 
+def test_trial_figures_fit_their_fixed_layouts(figs, trial_data):
+    """The trial figures have fixed margins (style.fixed_layout: no tight bounding box when saved, which drew
+    every figure twice), so whatever they draw must lie inside the canvas: titles, labels, legends. Fig. 3c's
+    title also with the longest window description (a trial longer than OVERVIEW_MAX_S)."""
+    style.apply()
+    d, summary = trial_data
+    modes = trial_figures.present_modes(d)
+    span = (0.0, 0.5, "t = 10.01–11.01 s (first 1 s of contact)")
+    long_titles = [("fig3cde_friction.png, long window", trial_figures.friction_figure(d, summary, span))]
+    for rows, title in ((trial_figures.SHAPE_ROWS, "Figs. 2b–d: shape error, contact height, arc length of contact"),
+                        (trial_figures.WHISKER_ROWS, "Fig. 3b: whisker frame")):
+        long_titles.append((f"{title}, long window", trial_figures.time_series(d, modes, rows, span, title)))
+    for name, fig in list(figs.items()) + long_titles:
+        assert getattr(fig, "vibrissa_fixed_layout", False), name
+        fig.canvas.draw()
+        box = fig.get_tightbbox(fig.canvas.get_renderer())  # inches
+        w, h = fig.get_size_inches()
+        assert box.x0 >= -0.02 and box.y0 >= -0.02 and box.x1 <= w + 0.02 and box.y1 <= h + 0.02, (name, box)
+    for _, fig in long_titles:
+        plt.close(fig)
+
+
+def test_a_fixed_layout_figure_is_drawn_once_when_saved(tmp_path):
+    """savefig(bbox_inches=None) falls back to rcParams["savefig.bbox"]; with "tight" there, a fixed layout
+    was still measured in a first draw. Counted by draw events: one for a fixed layout, two with tight."""
+    style.apply()
+    draws = {}
+    for fixed in (True, False):
+        fig, ax = plt.subplots(figsize=(2, 2))
+        if fixed:
+            style.fixed_layout(fig)
+        ax.plot([0, 1], [0, 1])
+        fig.canvas.mpl_connect("draw_event", lambda _event, key=fixed: draws.update({key: draws.get(key, 0) + 1}))
+        style.save(fig, str(tmp_path / f"fixed_{fixed}.png"))
+    assert draws == {True: 1, False: 2}
+
+
+def test_save_all_draws_every_figure_once_across_processes(tmp_path):
+    """style.save_all's processes share one queue: every figure is drawn exactly once, in a child process; a
+    figure that fails does not stop the others, and save_all then raises."""
+    log = tmp_path / "drawn.txt"
+
+    def drawer(name, fail=False):
+        def draw():
+            with open(log, "a") as f:
+                f.write(f"{name} {os.getpid()}\n")
+            if fail:
+                raise ValueError("this figure fails")
+            fig, _ = plt.subplots(figsize=(1, 1))
+            return style.fixed_layout(fig, left_in=0.1, right_in=0.1, top_in=0.1, bottom_in=0.1, legend_in=0.0)
+        return draw
+
+    style.apply()
+    names = [f"f{k}.png" for k in range(7)]
+    style.save_all({n: drawer(n) for n in names}, str(tmp_path), jobs=3)
+    drawn = [line.split() for line in log.read_text().splitlines()]
+    assert sorted(n for n, _ in drawn) == names
+    assert all(int(pid) != os.getpid() for _, pid in drawn)
+    assert all((tmp_path / n).stat().st_size > 0 for n in names)
+
+    log.unlink()
+    out = tmp_path / "with_failure"
+    with pytest.raises(RuntimeError, match="figures failed"):
+        style.save_all({"bad.png": drawer("bad.png", fail=True), "a.png": drawer("a.png"), "b.png": drawer("b.png")},
+                       str(out), jobs=2)
+    assert sorted(line.split()[0] for line in log.read_text().splitlines()) == ["a.png", "b.png", "bad.png"]
+    assert (out / "a.png").exists() and (out / "b.png").exists() and not (out / "bad.png").exists()
+
+
+@pytest.mark.parametrize("line", ["go\n", "", "stop\n"])
+def test_trial_figures_started_early_draw_only_on_go(trial_files, tmp_path, line):
+    """`vibrissa trial` starts trial_figures.py --start-on-stdin before solving: it draws once told "go", and
+    exits drawing nothing (status 0) at the end of input or any other line (the analysis failed)."""
+    out = tmp_path / "figures"
+    done = subprocess.run([sys.executable, os.path.join(FIGURES, "trial_figures.py"), str(trial_files / "frames.h5"),
+                           str(trial_files / "summary.json"), str(out), "--start-on-stdin"],
+                          input=line, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    drawn = sorted(os.listdir(out)) if out.exists() else []
+    if line == "go\n":  # the default set
+        assert drawn == sorted(trial_figures.builders(*trial_figures_data(trial_files), all_figures=False))
+    else:
+        assert drawn == []
+
+
+def trial_figures_data(trial_files):
+    return trial_figures.load(trial_files / "frames.h5"), json.loads((trial_files / "summary.json").read_text())
+
+
+def test_cli_trial_that_fails_draws_no_figures(cli, tmp_path):
+    """The figure script started ahead of the solve exits quietly when the trial cannot be analysed."""
+    trial = tmp_path / "t.csv"
+    trial.write_text("time,theta\n0,0\n")
+    done = subprocess.run([cli, "trial", trial, "--out", tmp_path / "r"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1 and "vibrissa-trial" in done.stderr
+    assert "Traceback" not in done.stderr and "figure script" not in done.stderr
+    assert not (tmp_path / "r" / "figures").exists()
+
+
 def test_units_are_written_properly(figs):
     labels = [ax.get_ylabel() + ax.get_xlabel() for fig in figs.values() for ax in fig.axes]
     assert not any("uN" in s or "N m" in s for s in labels)
@@ -239,6 +338,13 @@ def test_cli_trial_window_flags(cli, tmp_path):
     png = tmp_path / "r" / "figures" / "fig3b_whisker_signals.png"
     width = int.from_bytes(png.read_bytes()[16:20], "big")
     assert width < 7.5 * 60  # drawn at the requested dpi (7 in wide)
+    # the default set leaves out the extra figures; --all-figures draws them too
+    drawn = {p.name for p in (tmp_path / "r" / "figures").glob("*.png")}
+    assert len(drawn) == 6 and not drawn & set(trial_figures.EXTRA_FIGURES)
+    done = subprocess.run([cli, "trial", trial, "--all-figures", "--figure-dpi", "60", "--out", tmp_path / "r"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0 and "failed" not in done.stderr, done.stderr
+    assert {p.name for p in (tmp_path / "r" / "figures").glob("*.png")} == drawn | set(trial_figures.EXTRA_FIGURES)
 
 
 def luminance(hex_colour):

@@ -147,11 +147,12 @@ class TrialResult(_NamedArrays):
             self.write(tmp / "results")
             return write_trial_view(tmp / "trial.h5", tmp / "results", path)
 
-    def figures(self, directory, window=None, whisk=None, dpi=None):
+    def figures(self, directory, window=None, whisk=None, dpi=None, all_figures=False):
         """Draws the figures of ``vibrissa trial`` (figures/trial_figures.py, matplotlib and h5py) into
         `directory`; returns the PNG paths. ``window=(start_s, end_s)`` or ``whisk=N`` (contact period, from
-        1) choose the span of the time series and ``dpi`` the resolution, as ``vibrissa trial --window``,
-        ``--whisk`` and ``--figure-dpi`` do. Raises RuntimeError with the script's output if it fails."""
+        1) choose the span of the time series, ``dpi`` the resolution and ``all_figures`` adds the world-frame
+        and shape/height figures, as ``vibrissa trial --window``, ``--whisk``, ``--figure-dpi`` and
+        ``--all-figures`` do. Raises RuntimeError with the script's output if it fails."""
         directory = pathlib.Path(directory)
         directory.mkdir(parents=True, exist_ok=True)
         flags = []
@@ -162,6 +163,8 @@ class TrialResult(_NamedArrays):
             flags += ["--whisk", str(int(whisk))]
         if dpi is not None:
             flags += ["--dpi", str(int(dpi))]
+        if all_figures:
+            flags.append("--all")
         with tempfile.TemporaryDirectory() as tmp:
             self.write(tmp)
             done = subprocess.run([sys.executable, str(_figure_script("trial_figures.py")),

@@ -31,7 +31,8 @@ class TrialResult:
     def to_dataframe(self) -> Any: ...  # pandas.DataFrame
     def to_xarray(self) -> Any: ...  # xarray.Dataset, = xarray.open_dataset("frames.h5")
     def write(self, directory: PathLike) -> pathlib.Path: ...
-    def figures(self, directory: PathLike) -> list[pathlib.Path]: ...
+    def figures(self, directory: PathLike, window: Optional[tuple[float, float]] = None, whisk: Optional[int] = None,
+                dpi: Optional[int] = None, all_figures: bool = False) -> list[pathlib.Path]: ...
     def view(self, path: PathLike = "trial_view.html") -> pathlib.Path: ...  # docs/viewer.md
 
 def analyze_trial(trial: Union[Trial, PathLike], mu: Optional[float] = None, cutoff: float = 85.0,

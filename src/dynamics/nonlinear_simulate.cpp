@@ -10,10 +10,15 @@
 // theta_j = K^-1 (m_j + (K^-1 m_j) x m_j / 2) (core/chain.hpp) to second order in the joint rotation.
 // The mass matrix is the rest chain's (the inertia is linearised; the elastic and contact forces are not).
 //
-// Integrator: Alexander's two-stage SDIRK (gamma = 1 - 1/sqrt 2; L-stable, stiffly accurate, order 2), each stage
-// solved by Newton's method on the stage's modal rates; the contacts make the Newton matrix diag + a rank-3 term
-// per contact (Woodbury). Step-doubling error control as in the linear path.
+// Integrator: TR-BDF2 (Bank et al. 1985) as a three-stage ESDIRK (Hosea & Shampine 1996): a trapezoidal stage to
+// t + (2 - sqrt 2) h, then BDF2 to t + h; L-stable, stiffly accurate, order 2, the first stage explicit (the last
+// stage's f of the step before). The two implicit stages share the diagonal coefficient d, so their Newton matrices
+// are the same: each is solved by Newton's method on the stage's modal rates; the contacts make the Newton matrix
+// diag + a rank-3 term per contact (Woodbury). Error control (step_control.hpp) by the embedded third-order
+// estimate, filtered through the Newton matrix (stiff components count by their damped response). With friction
+// on any object: Alexander's two-stage SDIRK (same order, all stages implicit) with step doubling (run()).
 #include "nonlinear_simulate.hpp"
+#include "step_control.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +35,14 @@
 namespace vibrissa::dynamics::detail {
 namespace {
 
-const double gamma_sdirk = 1.0 - 1.0 / std::sqrt(2.0);
+// TR-BDF2 as an ESDIRK (Hosea & Shampine 1996, Appl. Numer. Math. 20:21, eqs. for the "TR-BDF2" tableau): c = (0,
+// 2d, 1), rows (0 0 0), (d d 0), (w w d), b = the last row (stiffly accurate), d = 1 - 1/sqrt 2, w = sqrt 2 / 4; the
+// embedded third-order weights b^ = ((1 - w) / 3, (3w + 1) / 3, d / 3).
+const double d_trbdf2 = 1.0 - 1.0 / std::sqrt(2.0);
+const double w_trbdf2 = std::sqrt(2.0) / 4.0;
+// With friction: Alexander's two-stage SDIRK (gamma = 1 - 1/sqrt 2; L-stable, stiffly accurate, order 2), step
+// doubling (see step_sdirk2).
+const double gamma_sdirk2 = 1.0 - 1.0 / std::sqrt(2.0);
 
 /// One contact's evaluation at a stage.
 struct ContactValue {
@@ -99,7 +111,6 @@ class Integrator {
     const Eigen::Matrix3d& R = f.base.R_WB;
     const auto& radii = w_.node_radii();
     const auto& arc = w_.node_arc_lengths();
-    bool rate_ready = false;
     for (std::size_t o = 0; o < objects_.size(); ++o) {
       const LineObstacle& ob = objects_[o];
       const Eigen::Vector3d c_B = R.transpose() * (ob.point_W - f.base.p_W_base);
@@ -107,7 +118,9 @@ class Integrator {
       ContactValue& cv = out[o];
       // Nearest approach of the centre line (segment by segment) to the line, minus the radii.
       double best = std::numeric_limits<double>::infinity(), best_u_raw = 0.0;
+      std::size_t best_i = 0;
       Eigen::Vector3d best_r = Eigen::Vector3d::Zero(), best_t = Eigen::Vector3d::UnitX();
+      const std::size_t last_link = kin_.nodes_B.size() - 2;
       for (std::size_t i = 0; i + 1 < kin_.nodes_B.size(); ++i) {
         const Eigen::Vector3d p = kin_.nodes_B[i], d = kin_.nodes_B[i + 1] - p, w0 = p - c_B;
         const double a = d.squaredNorm(), b = d.dot(e_B), denom = a - b * b;
@@ -120,6 +133,7 @@ class Integrator {
         if (gap < best) {
           best = gap;
           best_u_raw = u_raw;
+          best_i = i;
           best_r = r;
           best_t = d;
           cv.gap = gap;
@@ -128,12 +142,14 @@ class Integrator {
           cv.x_B = x;
         }
       }
-      // Which side of the line the whisker is on: the sign of r . (t x e) where the nearest point lies inside its
-      // link (where the centre line can cross the line), carried from step to step, so that a centre line pushed
-      // across an edge (radius 0) within one step counts as a penetration, not as the other side. Beyond the
-      // whisker's ends (the nearest point is an end node) the side is forgotten and read again later.
+      // Which side of the line the whisker is on: the sign of r . (t x e) where the nearest point lies on the
+      // whisker (where the centre line can cross the line), carried from step to step, so that a centre line
+      // pushed across an edge (radius 0) within one step counts as a penetration, not as the other side. Beyond
+      // the whisker's ends (the nearest point is the base or the tip, clamped) the side is forgotten and read
+      // again later. A node between two links is on the whisker: a contact passing from one link to the next
+      // keeps its side.
       const double side = best_r.dot(best_t.cross(e_B)) >= 0.0 ? 1.0 : -1.0;
-      const bool interior = best_u_raw > 0.0 && best_u_raw < 1.0;
+      const bool interior = !(best_i == 0 && best_u_raw <= 0.0) && !(best_i == last_link && best_u_raw >= 1.0);
       const double side_before = previous[o].side;
       cv.side = interior ? (side_before != 0.0 ? side_before : side) : 0.0;
       const bool crossed = interior && side_before != 0.0 && side != side_before;
@@ -152,22 +168,17 @@ class Integrator {
       const Eigen::Vector3d rel = cv.x_B - c_B;
       Eigen::Vector3d n = dist > 0.0 ? Eigen::Vector3d(best_r / dist) : Eigen::Vector3d(best_t.cross(e_B).normalized());
       if (crossed) n = -n;
-      if (!rate_ready) {
-        q_dot_.noalias() = Phi_ * rate;
-        rate_ready = true;
-      }
-      Eigen::Vector3d v_B = R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B));
+      const Eigen::Index joints = 3 * (cv.link + 1);
+      Jt_.resize(joints, 3);  // J^T, joints <= link
       for (int j = 0; j <= cv.link; ++j) {
         const std::size_t u = static_cast<std::size_t>(j);
-        v_B += (kin_.joint_axes_B[u] * q_dot_.segment<3>(3 * j)).cross(cv.x_B - kin_.nodes_B[u]);
+        Jt_.middleRows<3>(3 * j) = kin_.joint_axes_B[u].transpose() * skew(cv.x_B - kin_.nodes_B[u]);
       }
-      Eigen::MatrixXd Jt = Eigen::MatrixXd::Zero(3 * (cv.link + 1), 3);  // J^T, joints <= link
-      for (int j = 0; j <= cv.link; ++j) {
-        const std::size_t u = static_cast<std::size_t>(j);
-        Jt.block<3, 3>(3 * j, 0) = kin_.joint_axes_B[u].transpose() * skew(cv.x_B - kin_.nodes_B[u]);
-      }
-      Eigen::MatrixXd Ui(m_, 3);  // Phi^T J^T (a coefficient-wise product: 3 columns)
-      Ui.noalias() = Phi_.topRows(3 * (cv.link + 1)).transpose().lazyProduct(Jt);
+      Eigen::MatrixXd Ui(m_, 3);  // Phi^T J^T: three matrix-vector products with the first 3 (link + 1) rows of Phi
+      for (Eigen::Index k = 0; k < 3; ++k) Ui.col(k).noalias() = Phi_.topRows(joints).transpose() * Jt_.col(k);
+      // The contact point's velocity in B: the base's, plus J q' = (Phi^T J^T)^T eta'.
+      const Eigen::Vector3d v_B =
+          R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + Ui.transpose() * rate;
       // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n.
       const double inv_mass = (Ui * n).squaredNorm();
       const double cn = 2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / std::max(inv_mass, 1e-300));
@@ -178,37 +189,59 @@ class Integrator {
       if (before.state == ContactState::none) cv.anchor = lambda;  // touches: sticks where it touched
       const double mu = ob.friction_coefficient;
       double ft = 0.0;
+      Eigen::Vector3d b = e_B;  // the friction force's direction (below)
       if (fn > 0.0 || frozen_on) {
         const bool damped = frozen_on || (fn_raw > 0.0 && cn * gap_rate != 0.0);
         const Eigen::Vector3d dfn_dx = -kn_ * n, dfn_dv = damped ? Eigen::Vector3d(-cn * n) : Eigen::Vector3d::Zero();
         cv.S_x = n * dfn_dx.transpose();
         cv.S_v = n * dfn_dv.transpose();
-        // Elastic-plastic friction: the stick spring's force decides stick or slip (so that the state does not
-        // chatter); a damper on the stick spring (critical for the effective mass along the line, as the normal
-        // one) adds to the force, which stays inside the cone.
-        const double ct = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * e_B).squaredNorm(), 1e-300));
-        const double spring = -kt_ * (lambda - cv.anchor), damper = -ct * e_B.dot(v_B);
+        // Elastic-plastic friction, with the quasi-static frictional edge's law (spec §3.1; solve_frictional_edge):
+        // the whisker slides freely along its own length, so the friction force lies across it, along
+        // b = e_perp / |e_perp| (e_perp: the line's direction without its part along the whisker's tangent t);
+        // the stick spring holds the crossing's coordinate lambda along the line at the anchor (a whisker
+        // displacement delta across it moves lambda by b . delta / c, c = |e_perp|: spring -k_t c (lambda - anchor)
+        // along b), and Coulomb bounds the force's part along the line by mu times its part normal to the line:
+        // |F . e| <= mu |F - (F . e) e|, with F = f_n n + f_t b: |f_t| <= mu f_n / sqrt(c^2 - mu^2 (1 - c^2)) (no
+        // bound when the line is within atan(mu) of the whisker's tangent). A damper on the stick spring
+        // (critical for the effective mass along b, as the normal one) adds to the force, which stays inside the
+        // cone; the spring's force alone decides stick or slip (so that the state does not chatter).
+        // (b is also made normal to n, which at a node between two links is not exactly normal to the chord, so
+        // that c = b . e makes the cone exact.)
+        const Eigen::Vector3d t_hat = best_t.normalized();
+        Eigen::Vector3d e_perp = e_B - e_B.dot(t_hat) * t_hat;
+        e_perp -= e_perp.dot(n) * n;
+        const bool frictional = mu > 0.0 && e_perp.norm() > 1e-9;
+        if (frictional) b = e_perp.normalized();
+        const double c_line = frictional ? b.dot(e_B) : 0.0;
+        const double cone = c_line * c_line - mu * mu * (1.0 - c_line * c_line);
+        const double ratio = cone > 0.0 ? mu / std::sqrt(cone) : std::numeric_limits<double>::infinity();
+        const double limit = ratio * fn;
+        const double ct = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * b).squaredNorm(), 1e-300));
+        const double spring = -kt_ * c_line * (lambda - cv.anchor), damper = -ct * b.dot(v_B);
         const ContactState keep = frozen ? (*frozen)[o] : ContactState::none;
-        const bool stick = keep != ContactState::none ? keep == ContactState::stick && mu > 0.0
-                                                      : mu > 0.0 && std::abs(spring) <= mu * fn;
+        const bool stick = keep != ContactState::none ? keep == ContactState::stick && frictional
+                                                      : frictional && std::abs(spring) <= limit;
         if (stick) {
           cv.state = ContactState::stick;
           ft = spring + damper;
-          cv.S_x -= kt_ * e_B * e_B.transpose();
+          cv.S_x -= kt_ * b * b.transpose();
           if (keep != ContactState::none) {
-            cv.S_v -= ct * e_B * e_B.transpose();
-          } else if (std::abs(ft) > mu * fn) {
-            ft = ft > 0.0 ? mu * fn : -mu * fn;
+            cv.S_v -= ct * b * b.transpose();
+          } else if (std::abs(ft) > limit) {
+            ft = ft > 0.0 ? limit : -limit;
           } else {
-            cv.S_v -= ct * e_B * e_B.transpose();
+            cv.S_v -= ct * b * b.transpose();
           }
-        } else {
+        } else if (frictional) {
           cv.state = ContactState::slip;
           const double sign = spring >= 0.0 ? 1.0 : -1.0;
-          ft = sign * mu * fn;
-          cv.anchor = lambda + ft / kt_;  // the stick point slides along with the contact
-          cv.S_x += (sign * mu) * e_B * dfn_dx.transpose();
-          cv.S_v += (sign * mu) * e_B * dfn_dv.transpose();
+          ft = sign * limit;
+          cv.anchor = lambda + ft / (kt_ * c_line);  // the stick point slides along with the contact
+          cv.S_x += (sign * ratio) * b * dfn_dx.transpose();
+          cv.S_v += (sign * ratio) * b * dfn_dv.transpose();
+        } else {
+          cv.state = ContactState::slip;
+          cv.anchor = lambda;
         }
       } else {
         // Inside, but the damper pulls harder than the spring pushes: no force. Still touching (the state follows
@@ -217,17 +250,42 @@ class Integrator {
         cv.state = before.state != ContactState::none ? before.state : ContactState::slip;
         continue;
       }
-      cv.force_B = fn * n + ft * e_B;
+      cv.force_B = fn * n + ft * b;
       cv.force_W = R * cv.force_B;
       modal_force.noalias() += Ui * cv.force_B;
       if (U) (*U)[o] = std::move(Ui);
     }
   }
 
+  /// Solves N x = r with N = D - sum U g (g S_x + S_v) U^T, the stage's Newton matrix (D = 1 + g c + g^2 k) at the
+  /// contacts `contacts` whose projections Phi^T J^T are in `U` (empty: not pushing): Woodbury with them stacked.
+  Eigen::VectorXd solve_newton(const Eigen::VectorXd& D, double g, const std::vector<ContactValue>& contacts,
+                               const std::vector<Eigen::MatrixXd>& U, const Eigen::VectorXd& r) const {
+    std::vector<std::size_t> active;
+    for (std::size_t o = 0; o < U.size(); ++o)
+      if (U[o].size() != 0) active.push_back(o);
+    const Eigen::VectorXd Dinv_r = r.cwiseQuotient(D);
+    if (active.empty()) return Dinv_r;
+    const Eigen::Index p = 3 * static_cast<Eigen::Index>(active.size());
+    Eigen::MatrixXd Us(m_, p);
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(p, p);
+    for (std::size_t a = 0; a < active.size(); ++a) {
+      const ContactValue& cv = contacts[active[a]];
+      const Eigen::Index i = 3 * static_cast<Eigen::Index>(a);
+      Us.middleCols<3>(i) = U[active[a]];
+      S.block<3, 3>(i, i) = -g * (g * cv.S_x + cv.S_v);  // S' of (D + U S' U^T)
+    }
+    const Eigen::MatrixXd DinvU = Us.array().colwise() / D.array();
+    const Eigen::MatrixXd core = Eigen::MatrixXd::Identity(p, p) + Us.transpose() * DinvU * S;
+    return Dinv_r - DinvU * (S * core.partialPivLu().solve(Us.transpose() * Dinv_r));
+  }
+
   /// Solves the stage Y = A + g f(t, Y) for its rates. Returns false when Newton's method does not converge.
-  /// `guess`: a modal contact force to start Newton's method from (the last one known).
+  /// `guess`: a modal contact force to start Newton's method from (the last one known). `U_out`: the contacts'
+  /// Phi^T J^T at the solution (for solve_newton).
   bool stage(const Frame& f, double g, const Eigen::VectorXd& A_eta, const Eigen::VectorXd& A_rate,
-             const std::vector<ContactValue>& previous, const Eigen::VectorXd& guess, double tol, State& out) {
+             const std::vector<ContactValue>& previous, const Eigen::VectorXd& guess, double tol, State& out,
+             std::vector<Eigen::MatrixXd>* U_out = nullptr) {
     const Eigen::VectorXd D = Eigen::VectorXd::Ones(m_) + g * c_ + (g * g) * k_;
     const Eigen::VectorXd b0 = A_rate + g * (f.modal_input - k_.cwiseProduct(A_eta));
     Eigen::VectorXd Y = (b0 + g * guess).cwiseQuotient(D);
@@ -242,51 +300,90 @@ class Integrator {
       }
       out.rate = Y;
       const Eigen::VectorXd r = D.cwiseProduct(Y) - b0 - g * out.contact_force;
-      // Newton matrix D - sum U S U^T with S = g (g S_x + S_v): Woodbury with the active contacts stacked.
-      std::vector<Eigen::Index> active;
-      for (std::size_t o = 0; o < U.size(); ++o)
-        if (U[o].size() != 0) active.push_back(static_cast<Eigen::Index>(o));
-      if (active.empty() && it == 0 && out.contact_force.isZero(0.0) && guess.isZero(0.0))
+      const bool any = std::any_of(U.begin(), U.end(), [](const Eigen::MatrixXd& u) { return u.size() != 0; });
+      if (!any && it == 0 && out.contact_force.isZero(0.0) && guess.isZero(0.0)) {
+        if (U_out) *U_out = U;
         return true;  // no contact: exact
-      Eigen::VectorXd delta;
-      const Eigen::VectorXd Dinv_r = r.cwiseQuotient(D);
-      if (active.empty()) {
-        delta = -Dinv_r;
-      } else {
-        const Eigen::Index p = 3 * static_cast<Eigen::Index>(active.size());
-        Eigen::MatrixXd Us(m_, p);
-        Eigen::MatrixXd S = Eigen::MatrixXd::Zero(p, p);
-        for (std::size_t a = 0; a < active.size(); ++a) {
-          const ContactValue& cv = out.contacts[static_cast<std::size_t>(active[a])];
-          Us.middleCols<3>(3 * static_cast<Eigen::Index>(a)) = U[static_cast<std::size_t>(active[a])];
-          S.block<3, 3>(3 * static_cast<Eigen::Index>(a), 3 * static_cast<Eigen::Index>(a)) =
-              -g * (g * cv.S_x + cv.S_v);  // S' of (D + U S' U^T)
-        }
-        const Eigen::MatrixXd DinvU = Us.array().colwise() / D.array();
-        const Eigen::MatrixXd core = Eigen::MatrixXd::Identity(p, p) + Us.transpose() * DinvU * S;
-        delta = -(Dinv_r - DinvU * (S * core.partialPivLu().solve(Us.transpose() * Dinv_r)));
       }
+      const Eigen::VectorXd delta = -solve_newton(D, g, out.contacts, U, r);
       Y += delta;
       const double step = std::sqrt(k_.dot((g * delta).cwiseProduct(g * delta)) + delta.squaredNorm());
       if (step <= 1e-3 * tol) {
         out.eta = A_eta + g * Y;
         out.rate = Y;
-        evaluate_contacts(f, out.eta, Y, previous, out.contacts, out.contact_force, nullptr);
+        evaluate_contacts(f, out.eta, Y, previous, out.contacts, out.contact_force, U_out);
         return true;
       }
     }
     return false;
   }
 
-  /// One SDIRK2 step of length h from (t, y).
-  bool step(double t, double h, const State& y, double tol, State& out) {
-    const double g = gamma_sdirk * h;
+  /// One step of Alexander's SDIRK2 of length h from (t, y) (the objects have friction: see run()).
+  bool step_sdirk2(double t, double h, const State& y, double tol, State& out) {
+    const double g = gamma_sdirk2 * h;
     State Y1;
     if (!stage(frame(t + g), g, y.eta, y.rate, y.contacts, y.contact_force, tol, Y1)) return false;
     // f(Y1) = (Y1 - y) / g; stage 2: Y2 = y + (1 - gamma) h f(Y1) + g f(t + h, Y2).
-    const double w = (1.0 - gamma_sdirk) / gamma_sdirk;
+    const double w = (1.0 - gamma_sdirk2) / gamma_sdirk2;
     const Eigen::VectorXd A_eta = y.eta + w * (Y1.eta - y.eta), A_rate = y.rate + w * (Y1.rate - y.rate);
     return stage(frame(t + h), g, A_eta, A_rate, y.contacts, Y1.contact_force, tol, out);
+  }
+
+  /// One TR-BDF2 step of length h from (t, y) into `out`; `err`: the embedded estimate of its local error (energy
+  /// norm). Returns false when a stage's Newton iteration does not converge.
+  bool step(double t, double h, const State& y, double tol, State& out, double& err) {
+    if (!step_from(t, h, y, y.contact_force, tol, out, err)) return false;
+    // A contact that begins within the step: its damper's force jumps from zero at the touch (F_n = c_n |g'| at
+    // g = 0), a jump of f that the explicit first stage would see at the step's end only (and the error estimate
+    // would shrink the step around it without end). The step is taken again with f at its start from the contact
+    // law continued across g = 0 (the contacts of the step's end held on), as the implicit stages see it.
+    std::vector<ContactState> held(objects_.size(), ContactState::none);
+    bool touched = false;
+    for (std::size_t o = 0; o < objects_.size(); ++o) {
+      const ContactState before = y.contacts[o].state, after = out.contacts[o].state;
+      touched = touched || (before == ContactState::none && after != ContactState::none);
+      held[o] = before != ContactState::none ? before : after;
+    }
+    if (!touched) return true;
+    std::vector<ContactValue> start;
+    Eigen::VectorXd start_force;
+    evaluate_contacts(frame(t), y.eta, y.rate, y.contacts, start, start_force, nullptr, &held);
+    return step_from(t, h, y, start_force, tol, out, err);
+  }
+
+  /// The step from (t, y) with `start_force` the modal contact force in f at its start.
+  bool step_from(double t, double h, const State& y, const Eigen::VectorXd& start_force, double tol, State& out,
+                 double& err) {
+    const double g = d_trbdf2 * h;
+    // f at the step's start from its state (first same as last: the contact force of the last stage's final
+    // evaluation).
+    const Eigen::VectorXd f1_eta = y.rate;
+    const Eigen::VectorXd f1_rate = frame(t).modal_input + start_force - c_.cwiseProduct(y.rate) -
+                                    k_.cwiseProduct(y.eta);
+    // Stage 2 (the trapezoidal rule to t + 2 d h): Y2 = y + g f1 + g f(Y2).
+    const Eigen::VectorXd A2_eta = y.eta + g * f1_eta, A2_rate = y.rate + g * f1_rate;
+    State Y2;
+    if (!stage(frame(t + 2.0 * g), g, A2_eta, A2_rate, y.contacts, start_force, tol, Y2)) return false;
+    const Eigen::VectorXd f2_eta = (Y2.eta - A2_eta) / g, f2_rate = (Y2.rate - A2_rate) / g;
+    // Stage 3 (BDF2 to t + h): Y3 = y + w h (f1 + f2) + g f(Y3).
+    const Eigen::VectorXd A3_eta = y.eta + (w_trbdf2 * h) * (f1_eta + f2_eta);
+    const Eigen::VectorXd A3_rate = y.rate + (w_trbdf2 * h) * (f1_rate + f2_rate);
+    std::vector<Eigen::MatrixXd> U;
+    if (!stage(frame(t + h), g, A3_eta, A3_rate, y.contacts, Y2.contact_force, tol, out, &U)) return false;
+    // h (b^ - b) . f, with b^ - b = ((1 - 4w) / 3, 1 / 3, -2d / 3) and f3 = (Y3 - A3) / g ...
+    const double e1 = h * (1.0 - 4.0 * w_trbdf2) / 3.0, e2 = h / 3.0, e3 = -2.0 * d_trbdf2 * h / 3.0 / g;
+    const Eigen::VectorXd e_eta = e1 * f1_eta + e2 * f2_eta + e3 * (out.eta - A3_eta);
+    const Eigen::VectorXd e_rate = e1 * f1_rate + e2 * f2_rate + e3 * (out.rate - A3_rate);
+    // ... filtered by (I - g df/dy)^-1 (Hosea & Shampine 1996; Shampine's estimate for stiff problems), so that the
+    // stiff components (the penalty, the distal modes) count by their damped response, not by their raw rates.
+    // With eta = e_eta + g x_rate, the rate rows read N x_rate = e_rate - g k e_eta + g U S_x U^T e_eta.
+    Eigen::VectorXd rhs = e_rate - g * k_.cwiseProduct(e_eta);
+    for (std::size_t o = 0; o < U.size(); ++o)
+      if (U[o].size() != 0) rhs.noalias() += g * (U[o] * (out.contacts[o].S_x * (U[o].transpose() * e_eta)));
+    const Eigen::VectorXd D = Eigen::VectorXd::Ones(m_) + g * c_ + (g * g) * k_;
+    const Eigen::VectorXd x_rate = solve_newton(D, g, out.contacts, U, rhs);
+    err = energy_norm(e_eta + g * x_rate, x_rate);
+    return true;
   }
 
   TimeSeries run(const InitialState& initial) {
@@ -318,52 +415,40 @@ class Integrator {
     ts.contacts.assign(objects_.size(), ContactChannels{});
     record(ts, 0, 0.0, y);
 
-    const double max_step = opt_.max_step > 0.0 ? opt_.max_step : 1.0 / opt_.output_rate;
-    double t = 0.0, h_next = std::min(max_step, 1e-5);
     double scale = energy_norm(y.eta, y.rate);
-    State full, mid, half;
-    for (long f = 1; f < frames; ++f) {
-      const double t_out = static_cast<double>(f) / opt_.output_rate;
-      while (t < t_out) {
-        if (ts.steps + ts.rejected_steps >= opt_.max_steps) {
-          ts.status = SimulationStatus::max_steps;
-          return ts;
-        }
-        double h = h_next;
-        const bool last = t + 1.01 * h >= t_out;
-        if (last) h = t_out - t;
-        const double tol =
-            opt_.relative_tolerance * std::max(scale, energy_norm(y.eta, y.rate)) + opt_.absolute_tolerance;
-        const bool ok = step(t, h, y, tol, full) && step(t, 0.5 * h, y, tol, mid) &&
-                        step(t + 0.5 * h, 0.5 * h, mid, tol, half);
-        double factor = 0.25;
-        bool accept = false;
-        if (ok) {
-          const double err = energy_norm(half.eta - full.eta, half.rate - full.rate) / 3.0;
-          factor = err > 0.0 ? std::clamp(0.9 * std::cbrt(tol / err), 0.2, 4.0) : 4.0;
-          accept = err <= tol;
-        }
-        if (accept) {
-          note_events(ts, t, 0.5 * h, y, mid);
-          note_events(ts, t + 0.5 * h, 0.5 * h, mid, half);
-          y = half;
-          t = last ? t_out : t + h;
-          ++ts.steps;
-          ts.smallest_step = ts.steps == 1 ? h : std::min(ts.smallest_step, h);
-          ts.largest_step = std::max(ts.largest_step, h);
-          scale = std::max(scale, energy_norm(y.eta, y.rate));
-          if (!(last && h < h_next)) h_next = std::min(h * factor, max_step);
-        } else {
-          ++ts.rejected_steps;
-          h_next = h * factor;
-          if (h_next < 1e-14 * std::max(1.0, t_out)) {
-            ts.status = SimulationStatus::step_too_small;
-            return ts;
+    // Frictionless: TR-BDF2 with its embedded estimate. With friction: SDIRK2 with step doubling (each step also
+    // taken as two halves, which are kept; their difference / 3 estimates their error), three times the stage
+    // solves: at the slip -> stick transition TR-BDF2's explicit first stage flips the elastic-plastic state back
+    // and forth (docs/dynamics.md, "Integrator").
+    const bool friction = std::any_of(objects_.begin(), objects_.end(),
+                                      [](const LineObstacle& o) { return o.friction_coefficient > 0.0; });
+    State next, full, mid;
+    integrate_with_step_control(
+        opt_, frames, ts,
+        [&](double t, double h) {
+          const double tol =
+              opt_.relative_tolerance * std::max(scale, energy_norm(y.eta, y.rate)) + opt_.absolute_tolerance;
+          double err = 0.0;
+          if (friction) {
+            if (!(step_sdirk2(t, h, y, tol, full) && step_sdirk2(t, 0.5 * h, y, tol, mid) &&
+                  step_sdirk2(t + 0.5 * h, 0.5 * h, mid, tol, next)))
+              return StepAttempt{false, 0.0, tol};
+            return StepAttempt{true, energy_norm(next.eta - full.eta, next.rate - full.rate) / 3.0, tol};
           }
-        }
-      }
-      record(ts, f, t_out, y);
-    }
+          if (!step(t, h, y, tol, next, err)) return StepAttempt{false, 0.0, tol};
+          return StepAttempt{true, err, tol};
+        },
+        [&](double t, double h) {
+          if (friction) {
+            note_events(ts, t, 0.5 * h, y, mid);
+            note_events(ts, t + 0.5 * h, 0.5 * h, mid, next);
+          } else {
+            note_events(ts, t, h, y, next);
+          }
+          y = next;
+          scale = std::max(scale, energy_norm(y.eta, y.rate));
+        },
+        [&](long f, double t_out) { record(ts, f, t_out, y); });
     return ts;
   }
 
@@ -447,7 +532,8 @@ class Integrator {
   Eigen::Index m_ = 0;
   double kn_ = 0.0, kt_ = 0.0;
   std::vector<LineObstacle> objects_;
-  Eigen::VectorXd q_, q_dot_;
+  Eigen::VectorXd q_;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> Jt_;
   ChainKinematics kin_;
 };
 

@@ -11,6 +11,7 @@
 #include "vibrissa/core/checks.hpp"
 #include "vibrissa/core/limits.hpp"
 #include "nonlinear_simulate.hpp"
+#include "step_control.hpp"
 #include "vibrissa/dynamics/air_drag.hpp"
 
 namespace vibrissa::dynamics {
@@ -201,49 +202,28 @@ TimeSeries simulate(const Whisker& w, const LinearModel& model, const Modes& mod
     }
   };
 
-  const double max_step = opt.max_step > 0.0 ? opt.max_step : 1.0 / opt.output_rate;
-  double t = 0.0, h_next = std::min(max_step, 1e-5);
-  Eigen::VectorXd p_t = modal_force(0.0);
+  Eigen::VectorXd p_t = modal_force(0.0), p_end;
   record(0, 0.0, y, p_t);
   double scale = std::sqrt(energy_norm2(y.eta, y.rate));
-  for (long f = 1; f < frames; ++f) {
-    const double t_out = static_cast<double>(f) / opt.output_rate;
-    while (t < t_out) {
-      if (ts.steps + ts.rejected_steps >= opt.max_steps) {
-        ts.status = SimulationStatus::max_steps;
-        return ts;
-      }
-      double h = h_next;
-      const bool last = t + 1.01 * h >= t_out;  // land on the output time (no sliver step after it)
-      if (last) h = t_out - t;
-      const Eigen::VectorXd p_half = modal_force(t + 0.5 * h), p_end = modal_force(t + h);
-      const State full = step(y, h, p_t, p_end);
-      const State half = step(step(y, 0.5 * h, p_t, p_half), 0.5 * h, p_half, p_end);
-      const double err = std::sqrt(energy_norm2(half.eta - full.eta, half.rate - full.rate)) / 3.0;
-      const double tol = opt.relative_tolerance * std::max(scale, std::sqrt(energy_norm2(half.eta, half.rate))) +
-                         opt.absolute_tolerance;
-      const double factor = err > 0.0 ? std::clamp(0.9 * std::cbrt(tol / err), 0.2, 4.0) : 4.0;
-      if (err <= tol) {
+  State half;
+  detail::integrate_with_step_control(
+      opt, frames, ts,
+      [&](double t, double h) {
+        const Eigen::VectorXd p_half = modal_force(t + 0.5 * h);
+        p_end = modal_force(t + h);
+        const State full = step(y, h, p_t, p_end);
+        half = step(step(y, 0.5 * h, p_t, p_half), 0.5 * h, p_half, p_end);
+        const double err = std::sqrt(energy_norm2(half.eta - full.eta, half.rate - full.rate)) / 3.0;
+        const double tol = opt.relative_tolerance * std::max(scale, std::sqrt(energy_norm2(half.eta, half.rate))) +
+                           opt.absolute_tolerance;
+        return detail::StepAttempt{true, err, tol};
+      },
+      [&](double, double) {
         y = half;
-        t = last ? t_out : t + h;
         p_t = p_end;
-        ++ts.steps;
-        ts.smallest_step = ts.steps == 1 ? h : std::min(ts.smallest_step, h);
-        ts.largest_step = std::max(ts.largest_step, h);
         scale = std::max(scale, std::sqrt(energy_norm2(y.eta, y.rate)));
-        // A step shortened to land on an output says nothing against the step planned before it.
-        if (!(last && h < h_next)) h_next = std::min(h * factor, max_step);
-      } else {
-        ++ts.rejected_steps;
-        h_next = h * factor;
-        if (h_next < 1e-14 * std::max(1.0, t_out)) {
-          ts.status = SimulationStatus::step_too_small;
-          return ts;
-        }
-      }
-    }
-    record(f, t_out, y, p_t);
-  }
+      },
+      [&](long f, double t_out) { record(f, t_out, y, p_t); });
   return ts;
 }
 

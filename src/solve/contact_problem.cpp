@@ -78,12 +78,13 @@ void set_force_angle(const Whisker& w, const Placement& X, double force, double 
 
 void fill_solution(const Whisker& w, const Placement& X, const LoadState& state, const SolveOptions& options,
                    const std::optional<Eigen::Vector3d>& edge_direction_W, Solution& out,
-                   const ContactEvaluations* evaluated) {
+                   const ContactEvaluations* evaluated, const ContactKinematics<double>* kinematics) {
   Workspace& ws = workspace();
   auto& omega = ws.omega;
   const bool walk_for_shape = options.compute_shape && w.properties().scheme != Scheme::paper;
   std::optional<ContactKinematics<double>> known;
   if (evaluated && !walk_for_shape) known = evaluated->at(state);
+  if (kinematics && !walk_for_shape) known = *kinematics;
   if (!known) {
     if (walk_for_shape) omega.resize(static_cast<std::size_t>(w.links()));
     const V3<double> F_L(state.force_x, state.force_y, state.force_z);

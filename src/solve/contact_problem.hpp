@@ -36,10 +36,12 @@ Solution solve_point_from(const Whisker& w, const Placement& X_WB, const Eigen::
 /// Fills every output of a Solution from the solved state (world and whisker-frame signals, shape).
 /// `edge_direction_W` (unit) adds normal_force / edge_force. `evaluated`, if it holds the kinematics at
 /// `state`, saves the forward evaluation (the shape of the second-order scheme still walks the chain for the
-/// joint rotations). Scratch storage is per thread (allocated once).
+/// joint rotations). `kinematics`: the kinematics at `state`, known (the same saving; the object modes).
+/// Scratch storage is per thread (allocated once).
 void fill_solution(const Whisker& w, const Placement& X_WB, const LoadState& state, const SolveOptions& options,
                    const std::optional<Eigen::Vector3d>& edge_direction_W, Solution& out,
-                   const ContactEvaluations* evaluated = nullptr);
+                   const ContactEvaluations* evaluated = nullptr,
+                   const ContactKinematics<double>* kinematics = nullptr);
 
 /// Sets the status and the contact state that goes with it (converged: contact; slipped_off: pushed_past;
 /// no_contact and not_converged: free).

@@ -5,10 +5,18 @@
 // A Newton step from a face overshoots such a band; halving it lands in the band, from where Newton converges
 // quadratically. (Levenberg-Marquardt's damping turns the step toward the gradient instead and then crawls
 // across the band.) Where no halving of the Newton step reduces the residual, damped steps are tried as in
-// levenberg_marquardt(), from which the evaluation helpers and the result come.
+// levenberg_marquardt(), from which the evaluation helpers and the result come. Along a crease's band (a mesh's)
+// the Newton step fails iteration after iteration and the damped steps crawl: there each iteration starts its
+// damping from a tenth of the last accepted one instead of from 1e-6 (each trial costs a walk and queries), and
+// 32 such iterations in a row count as a stall. (Fewer halvings there would save more, but change where some
+// crease contacts end: measured, docs/performance.md.)
 #include "levenberg_marquardt.hpp"
 
 namespace vibrissa::detail {
+
+/// Consecutive iterations that need a damped step before the search counts as stalled: it is then crawling along
+/// a crease's band (docs/objects.md, "Speed").
+inline constexpr int max_crawl = 32;
 
 template <class Residual>
 LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bounds, double tolerance,
@@ -24,6 +32,8 @@ LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bou
   double cost = r.squaredNorm();
   double previous_r_max = 0.0;  // max-norm of the residual at the last accepted point (0: none yet)
   int it = 0;
+  int crawl = 0;                // consecutive iterations that needed a damped step
+  double damping_ratio = 0.0;   // the last accepted damping, relative to the largest diagonal of J^T J
   for (; it < max_iterations; ++it) {
     if (r.cwiseAbs().maxCoeff() <= tolerance) {
       out.converged = true;
@@ -58,15 +68,21 @@ LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bou
     double t = 1.0;
     for (int halving = 0; halving < 12 && !accepted; ++halving, t *= 0.5)
       accepted = try_step(t * newton, halving == 0 && predicted > speculation_margin * tolerance);
-    if (!accepted) {  // damped steps, as levenberg_marquardt()
+    if (accepted) {
+      crawl = 0;
+    } else {  // damped steps, as levenberg_marquardt(), from a tenth of the last damping that was accepted
       const Eigen::Matrix3d A = J.transpose() * J;
       const Eigen::Vector3d g = J.transpose() * r;
       const double scale = std::max(A.diagonal().maxCoeff(), 1e-300);
-      for (double lambda = 1e-6 * scale; lambda < 1e12 * scale && !accepted; lambda *= 10.0) {
+      const double first = crawl > 0 ? std::max(1e-6, 0.1 * damping_ratio) : 1e-6;
+      for (double ratio = first; ratio < 1e12 && !accepted; ratio *= 10.0) {
         Eigen::Matrix3d damped = A;
-        damped.diagonal() += lambda * A.diagonal().cwiseMax(1e-12 * scale);
+        damped.diagonal() += ratio * scale * A.diagonal().cwiseMax(1e-12 * scale);
         accepted = try_step(-damped.ldlt().solve(g), false);
+        if (accepted) damping_ratio = ratio;
       }
+      if (accepted) ++crawl;
+      if (crawl > max_crawl) break;  // crawling along a crease: stalled
     }
     if (!accepted) break;  // stalled
   }

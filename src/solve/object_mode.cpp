@@ -236,7 +236,7 @@ ObjectAttempt attempt_by_sliding(const Whisker& w, const Scales& sc, const Objec
     iterations += held.lm.iterations;
     if (held.status != Status::converged) break;
     u = held.lm.u;
-    deflected_shape(w, Placement{}, held.state, nodes);
+    deflected_nodes(w, g, Placement{}, held.state, nodes);
     const Clearance c = local ? nearest_about(placed, w, nodes, g.thickness, held.state.arc_length)
                               : clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none);
     const double s_next = std::clamp(c.arc_length, 1e-6 * sc.length, sc.length) / sc.length;
@@ -377,7 +377,7 @@ ObjectAttempt attempt_on_features(const Whisker& w, const Scales& sc, const Obje
   return failed;
 }
 
-ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
+ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                                    std::optional<double> hint, const SolveOptions& options, const LoadState* warm) {
   ObjectOutcome out;
   std::optional<DeepestPoint> deepest;
@@ -401,12 +401,14 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
     sigma = core_side(g, w.rest_point_B(d.arc_length),
                       w.rest_link_frames_B()[static_cast<std::size_t>(std::clamp(k, 0, w.links() - 1))].col(0));
   };
+  LoadState start;  // warm: the load the first attempt starts at (its walk made once, for it and the checks)
   if (warm) {
     tip = is_tip(w, warm->arc_length);
     u0 = tip ? Eigen::Vector3d(warm->force_x, warm->force_y, warm->force_z) / sc.force
              : Eigen::Vector3d(warm->force_y / sc.force, warm->force_z / sc.force, warm->arc_length / sc.length);
+    start = tip ? *warm : start_side_load(w, sc, g, law, u0);
     if (g.core_B) {  // the side of the line core the warm contact is on
-      const ObjectContactPoint p = contact_point_at(w, g, *warm, tip, 1.0);
+      const ObjectContactPoint p = contact_point_at(w, g, start, tip, 1.0);
       sigma = core_side(g, p.c_B, p.t_B);
     }
   } else {
@@ -426,7 +428,7 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeo
   WarmAttempt first;
   SolveOptions first_options = options;
   if (warm) {
-    first = {true, lowest_piece(w, g, *warm)};
+    first = {true, lowest_piece(w, g, start)};
     // On an object with creases (a mesh, a box) a warm attempt that does not converge within a few Newton steps
     // has stalled at a crease's band: the sliding attempt below crosses it (docs/objects.md, "Speed").
     if (g.shape->needs_thickness()) first_options.max_iterations = std::min(options.max_iterations, warm_creased_iterations);
@@ -564,7 +566,8 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
     return off;
   }
   Solution out;
-  fill_solution(w, X, a.state, options, std::nullopt, out);
+  const ContactKinematics<double> solved = kinematics_at(w, g, a.state);
+  fill_solution(w, X, a.state, options, std::nullopt, out, nullptr, &solved);
   out.iterations = a.lm.iterations;
   out.residual = a.lm.residual * w.length();
   if (a.status != Status::converged) {
@@ -593,7 +596,7 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
   }
   if (out.status == Status::converged) {  // nowhere else inside the object
     std::vector<Eigen::Vector3d> nodes;
-    deflected_shape(w, X, a.state, nodes);
+    deflected_nodes(w, g, X, a.state, nodes);
     const std::vector<double> none;
     const PlacedShape placed{object.shape, object.X_WO};
     const Clearance c = clearance(placed, nodes, w.node_arc_lengths(), g.thickness ? w.node_radii() : none,
@@ -646,8 +649,8 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
           const ObjectContactPoint at = contact_point_at(w, g, a.state, false, o.sigma);
           const Eigen::Vector3d p_B = X.R_WB.transpose() * (c.point_W - X.p_W_base);
           SurfacePoint crease = g.query(p_B);
-          for (int k = 1; k < crease_samples && crease.feature == SurfaceFeature::face; ++k) {
-            const SurfacePoint q = g.query(at.c_B + (k / double(crease_samples)) * (p_B - at.c_B));
+          for (int j = 1; j < crease_samples && crease.feature == SurfaceFeature::face; ++j) {
+            const SurfacePoint q = g.query(at.c_B + (j / double(crease_samples)) * (p_B - at.c_B));
             if (q.feature == SurfaceFeature::edge) crease = q;
           }
           if (crease.feature == SurfaceFeature::edge) {

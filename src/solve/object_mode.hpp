@@ -64,7 +64,7 @@ ObjectAttempt attempt_by_bracketing(const Whisker& w, const Scales& sc, const Ob
                                    const FrictionLaw& law, double& sigma, const ObjectAttempt& from,
                                    const SolveOptions& options);
 /// The solve: start (warm, hint, or the rest whisker's deepest point), attempts, continuation from touch.
-ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, ObjectGeometryB g, const FrictionLaw& law,
+ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                                    std::optional<double> hint, const SolveOptions& options, const LoadState* warm);
 /// The Solution of an outcome: outputs, contact side, approach, second contact. Where the whisker would be inside
 /// the object at a second place, a frictionless outcome solves the two contacts together (two_contact.hpp) up to

@@ -1,6 +1,7 @@
 #include "object_problem.hpp"
 
 #include "newton_line_search.hpp"
+#include "vibrissa/solve/solvers.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -117,26 +118,28 @@ S piece_gap(ClearancePiece piece, const Whisker& w, const ObjectGeometryB& g, co
   return surface_at(g, c + tau * u).distance - r_tau;
 }
 
-/// Whether a piece of the link can be lower than c: never on a line without radius or in the paper scheme (its
-/// load frame is the loaded link's chord).
 /// The whisker deflected by `state` with the load frame's axes (through the geometry's record of the last one).
 const ObjectGeometryB::Deflected& deflected_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state) {
-  const std::array<double, 7> load{state.force_x,  state.force_y,  state.force_z,   state.couple_x,
-                                   state.couple_y, state.couple_z, state.arc_length};
-  if (!g.last_deflected || g.last_deflected->load != load) {
-    ObjectGeometryB::Deflected d;
-    d.load = load;
-    d.follow = {V3<double>(1, 0, 0), V3<double>(0, 1, 0)};
-    d.k = deflect<double, true>(w, V3<double>(state.force_x, state.force_y, state.force_z),
-                                V3<double>(state.couple_x, state.couple_y, state.couple_z), state.arc_length, nullptr,
-                                &d.follow);
-    g.last_deflected = std::move(d);
-  }
+  FollowerVectors<double> follow{V3<double>(1, 0, 0), V3<double>(0, 1, 0)};
+  (void)walk_deflected<double>(w, g, V3<double>(state.force_x, state.force_y, state.force_z),
+                               V3<double>(state.couple_x, state.couple_y, state.couple_z), state.arc_length, follow);
   return *g.last_deflected;
 }
 
+/// Whether a piece of the link can be lower than c: never on a line without radius or in the paper scheme (its
+/// load frame is the loaded link's chord).
 bool pieces_apply(const Whisker& w, const ObjectGeometryB& g) {
   return w.properties().scheme != Scheme::paper && !(g.core_B && g.core_B->radius == 0.0 && !g.thickness);
+}
+
+/// The walk's inputs of a side contact at scaled unknowns u (force and couple in the load frame, s, and r(s)).
+template <class S>
+void side_walk_inputs(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                      const std::array<S, 3>& u, V3<S>& F_L, V3<S>& C_L, S& s, S& r, double& slope) {
+  s = sc.length * u[2];
+  slope = 0.0;
+  r = g.thickness ? radius_at(w, s, slope) : S(0.0);
+  side_load(law, g.thickness, S(sc.force * u[0]), S(sc.force * u[1]), r, slope, F_L, C_L);
 }
 
 LMBounds side_bounds() {
@@ -147,6 +150,94 @@ LMBounds side_bounds() {
 }
 
 }  // namespace
+
+template <class S>
+ContactKinematics<S> walk_deflected(const Whisker& w, const ObjectGeometryB& g, const V3<S>& F_L, const V3<S>& C_L,
+                                    const S& s, FollowerVectors<S>& follow) {
+  const std::array<double, 7> load{value_of(F_L.x), value_of(F_L.y), value_of(F_L.z), value_of(C_L.x),
+                                   value_of(C_L.y), value_of(C_L.z), value_of(s)};
+  if constexpr (std::is_same_v<S, double>) {
+    if (g.last_deflected && g.last_deflected->load == load) {
+      follow = g.last_deflected->follow;
+      return g.last_deflected->k;
+    }
+    if (!g.last_deflected) g.last_deflected = ObjectGeometryB::Deflected{};
+    ObjectGeometryB::Deflected& d = *g.last_deflected;
+    d.load = load;
+    const bool second_order = w.properties().scheme != Scheme::paper;
+    d.omega.resize(second_order ? static_cast<std::size_t>(w.links()) : 0);
+    d.k = deflect<double, true>(w, F_L, C_L, s, second_order ? d.omega.data() : nullptr, &follow);
+    d.follow = follow;
+    return d.k;
+  } else {
+    const std::array<Dual<3>, 7> input{F_L.x, F_L.y, F_L.z, C_L.x, C_L.y, C_L.z, s};
+    auto same = [](const std::array<Dual<3>, 7>& a, const std::array<Dual<3>, 7>& b) {
+      for (std::size_t i = 0; i < 7; ++i)
+        if (a[i].v != b[i].v || a[i].d != b[i].d) return false;
+      return true;
+    };
+    if (g.last_jacobian && same(g.last_jacobian->input, input)) {
+      follow = g.last_jacobian->follow;
+      return g.last_jacobian->k;
+    }
+    const ContactKinematics<S> k = deflect_for_solve<S>(w, F_L, C_L, s, follow);
+    g.last_jacobian = ObjectGeometryB::DeflectedJacobian{input, k, follow};
+    if (!g.last_deflected) g.last_deflected = ObjectGeometryB::Deflected{};
+    ObjectGeometryB::Deflected& d = *g.last_deflected;
+    auto v = [](const V3<S>& x) { return V3<double>(value_of(x.x), value_of(x.y), value_of(x.z)); };
+    d.load = load;
+    d.k = {v(k.p_contact_B), v(k.force_B), v(k.couple_B)};
+    d.follow = {v(follow[0]), v(follow[1])};
+    d.omega.clear();
+    return k;
+  }
+}
+template ContactKinematics<double> walk_deflected<double>(const Whisker&, const ObjectGeometryB&, const V3<double>&,
+                                                          const V3<double>&, const double&, FollowerVectors<double>&);
+template ContactKinematics<Dual<3>> walk_deflected<Dual<3>>(const Whisker&, const ObjectGeometryB&,
+                                                            const V3<Dual<3>>&, const V3<Dual<3>>&, const Dual<3>&,
+                                                            FollowerVectors<Dual<3>>&);
+
+LoadState start_side_load(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                          const Eigen::Vector3d& u0) {
+  using D = Dual<3>;
+  const LMBounds b = side_bounds();
+  const Eigen::Vector3d u = u0.cwiseMax(b.lower).cwiseMin(b.upper);  // as newton_line_search() starts
+  const std::array<D, 3> x = {D::variable(u[0], 0), D::variable(u[1], 1), D::variable(u[2], 2)};
+  V3<D> F_L, C_L;
+  D s, r;
+  double slope;
+  side_walk_inputs<D>(w, sc, g, law, x, F_L, C_L, s, r, slope);
+  FollowerVectors<D> follow{V3<D>(D(1.0), D(0.0), D(0.0)), V3<D>(D(0.0), D(1.0), D(0.0))};
+  (void)walk_deflected<D>(w, g, F_L, C_L, s, follow);
+  LoadState state;
+  state.force_x = F_L.x.v;
+  state.force_y = F_L.y.v;
+  state.force_z = F_L.z.v;
+  state.couple_x = C_L.x.v;
+  state.couple_y = C_L.y.v;
+  state.couple_z = C_L.z.v;
+  state.arc_length = s.v;
+  return state;
+}
+
+ContactKinematics<double> kinematics_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state) {
+  return deflected_at(w, g, state).k;
+}
+
+void deflected_nodes(const Whisker& w, const ObjectGeometryB& g, const Placement& X, const LoadState& state,
+                     std::vector<Eigen::Vector3d>& nodes) {
+  if (w.properties().scheme == Scheme::paper) {
+    deflected_shape(w, X, state, nodes);
+    return;
+  }
+  const std::array<double, 7> load{state.force_x,  state.force_y,  state.force_z,   state.couple_x,
+                                   state.couple_y, state.couple_z, state.arc_length};
+  if (!g.last_deflected || g.last_deflected->load != load || g.last_deflected->omega.empty()) g.last_deflected.reset();
+  const ObjectGeometryB::Deflected& d = deflected_at(w, g, state);  // (walked again only for the joint rotations)
+  deflected_nodes_B(w, d.omega.data(), nodes);
+  for (auto& p : nodes) p = X.to_world(p);
+}
 
 double whisker_radius_at(const Whisker& w, double s, double& slope) { return radius_at(w, s, slope); }
 
@@ -214,13 +305,12 @@ ObjectAttempt attempt_side(const Whisker& w, const Scales& sc, const ObjectGeome
   if (g.core_B) normal_basis(g.core_B->direction, e1, e2);  // as edge mode (edge_problem.cpp)
   auto residual = [&](const auto& u) {
     using S = std::decay_t<decltype(u[0])>;
-    const S s = sc.length * u[2];
-    double slope = 0.0;
-    const S r = g.thickness ? radius_at(w, s, slope) : S(0.0);
+    S s, r;
+    double slope;
     V3<S> F_L, C_L;
-    side_load(law, g.thickness, S(sc.force * u[0]), S(sc.force * u[1]), r, slope, F_L, C_L);
+    side_walk_inputs<S>(w, sc, g, law, u, F_L, C_L, s, r, slope);
     FollowerVectors<S> follow{V3<S>(S(1.0), S(0.0), S(0.0)), V3<S>(S(0.0), S(1.0), S(0.0))};
-    const auto k = deflect_for_solve<S>(w, F_L, C_L, s, follow);
+    const auto k = walk_deflected<S>(w, g, F_L, C_L, s, follow);
     const V3<S>& c = k.p_contact_B;
     const V3<S>& t = follow[0];
     const V3<S> F((S(1.0) / sc.force) * k.force_B.x, (S(1.0) / sc.force) * k.force_B.y,
@@ -304,7 +394,7 @@ ObjectAttempt attempt_tip(const Whisker& w, const Scales& sc, const ObjectGeomet
     if (law.kind != FrictionLaw::Kind::frictionless && g.thickness)
       C_L = S(-r_tip) * cross(V3<S>(law.normal_L), F_L);
     FollowerVectors<S> follow{V3<S>(S(1.0), S(0.0), S(0.0)), V3<S>(S(0.0), S(1.0), S(0.0))};
-    const auto k = deflect_for_solve<S>(w, F_L, C_L, S(L), follow);
+    const auto k = walk_deflected<S>(w, g, F_L, C_L, S(L), follow);
     const SurfaceAt<S> q = surface_at(g, k.p_contact_B);
     const S gap_c = q.distance - S(r_tip);
     const S gap = piece_gap(piece, w, g, S(L), k.p_contact_B, follow, gap_c, q.value);

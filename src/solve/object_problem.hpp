@@ -10,6 +10,7 @@
 // zero radius and thickness off exactly edge mode's equations.
 #include <array>
 #include <optional>
+#include <vector>
 
 #include "contact_problem.hpp"
 #include "vibrissa/objects/shape.hpp"
@@ -31,12 +32,23 @@ struct ObjectGeometryB {
   /// The whisker's kinematics (with the load frame's axes) at the last load contact_point_at or lowest_piece
   /// deflected it with: the same load is asked for several times in a solve (checks, the piece, the outputs).
   /// It depends on the whisker and the load alone; a geometry belongs to one solve (one thread, one whisker).
+  /// The residuals' own evaluations go through the same record (walk_deflected), so that the checks and outputs
+  /// at a solved load walk no more.
   struct Deflected {
     std::array<double, 7> load{};  ///< force, couple, s
     ContactKinematics<double> k;
     FollowerVectors<double> follow;
+    std::vector<Eigen::Vector3d> omega;  ///< the joint rotations (second-order scheme; empty: not recorded)
   };
   mutable std::optional<Deflected> last_deflected;
+  /// The last walk with derivatives, keyed by its inputs (values and derivatives): a warm start makes its first
+  /// one early (start_side_load) and the attempt's first evaluation takes it from here.
+  struct DeflectedJacobian {
+    std::array<Dual<3>, 7> input;  ///< force, couple, s
+    ContactKinematics<Dual<3>> k;
+    FollowerVectors<Dual<3>> follow;
+  };
+  mutable std::optional<DeflectedJacobian> last_jacobian;
   /// The shape's query at c_B (B frame).
   [[nodiscard]] SurfacePoint query(const Eigen::Vector3d& c_B) const;
 };
@@ -84,12 +96,29 @@ ObjectAttempt attempt_side(const Whisker& w, const Scales& sc, const ObjectGeome
                            double sigma, const Eigen::Vector3d& u0, const SolveOptions& options,
                            ClearancePiece piece = ClearancePiece::centre,
                            std::optional<double> pinned = std::nullopt);
+/// The load at which attempt_side() from u0 evaluates first, with that evaluation made now and recorded in g (its
+/// walk with derivatives, and its values for the checks at that load: lowest_piece, contact_point_at).
+LoadState start_side_load(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
+                          const Eigen::Vector3d& u0);
 /// The tip contact's equations from scaled unknowns u0 = (F_x, F_y, F_z) / force scale.
 ObjectAttempt attempt_tip(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                           const Eigen::Vector3d& u0, const SolveOptions& options,
                           ClearancePiece piece = ClearancePiece::centre);
 /// The loaded link's piece with the lowest gap at a load (centre where pieces do not apply).
 ClearancePiece lowest_piece(const Whisker& w, const ObjectGeometryB& g, const LoadState& state);
+
+/// The whisker's deflection by a load in the load frame with the load frame's x and y axes (`follow` given as
+/// (1, 0, 0), (0, 1, 0)): deflect_for_solve() through the geometry's record of the last one (its values; a
+/// Dual<3> evaluation is recorded without the joint rotations).
+template <class S>
+ContactKinematics<S> walk_deflected(const Whisker& w, const ObjectGeometryB& g, const V3<S>& F_L, const V3<S>& C_L,
+                                    const S& s, FollowerVectors<S>& follow);
+/// The deflected whisker's nodes at a solved load, in the frame of X (B: Placement{}), from the record where it
+/// holds that load's joint rotations (deflected_shape() otherwise).
+void deflected_nodes(const Whisker& w, const ObjectGeometryB& g, const Placement& X, const LoadState& state,
+                     std::vector<Eigen::Vector3d>& nodes);
+/// The kinematics at a solved load (through the record).
+ContactKinematics<double> kinematics_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state);
 
 /// The contact at a solved load (tip: state.arc_length == L).
 ObjectContactPoint contact_point_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state, bool tip,

@@ -113,32 +113,32 @@ TEST(DynamicsContact, WithoutObjectsTheNonlinearPathAgreesWithTheLinearOneForSma
 }
 
 /// The quasi-static frictional edge sequence along the sweep at the frames of `ts` (contact history: the previous
-/// frame's contact point), and the largest gap of the base moment against the dynamics' [N m], and its peak.
+/// frame's contact point, from the touch's point on), and the largest gap of the base moment against the
+/// dynamics' [N m], its peak, and the static solves' stick/slip per frame in contact.
 struct Comparison {
   double worst = 0.0, peak = 0.0;
+  std::vector<FrictionState> friction;
 };
 Comparison against_quasi_static(const Whisker& w, const BaseTrajectory& base, const LineObstacle& ob,
                                 const TimeSeries& ts) {
   Comparison out;
   const Edge edge{ob.point_W, ob.direction_W};
-  std::optional<Eigen::Vector3d> previous;
+  EXPECT_EQ(ts.events.at(0).type, ContactEventType::touch);
+  Eigen::Vector3d previous = ts.events.at(0).point_W;  // where the whisker touched: the contact's history starts
   LoadState warm;
   bool have_warm = false;
   for (std::size_t f = 0; f < ts.time.size(); ++f) {
     if (ts.contacts[0].state[f] == ContactState::none) continue;  // before the touch (or after a release)
     const BaseMotion b = base(ts.time[f]);
     const Placement X(b.R_WB, b.p_W_base);
-    Solution s;
-    if (!previous) {
-      s = solve_edge(w, X, edge);
-      if (s.status != Status::converged) continue;
-      previous = s.contact_point_W;
-    }
-    s = solve_frictional_edge(w, X, edge, ob.friction_coefficient, *previous, {}, have_warm ? &warm : nullptr);
+    const Solution s =
+        solve_frictional_edge(w, X, edge, ob.friction_coefficient, previous, {}, have_warm ? &warm : nullptr);
+    EXPECT_EQ(s.status, Status::converged) << "at t = " << ts.time[f];
     if (s.status != Status::converged) continue;
     previous = s.contact_point_W;
     warm = s.state;
     have_warm = true;
+    out.friction.push_back(s.friction);
     out.peak = std::max(out.peak, s.moment_W.norm());
     out.worst = std::max(out.worst, (s.moment_W - ts.moment_W[f]).norm());
   }
@@ -271,6 +271,63 @@ TEST(DynamicsContact, FrictionStaysInsideTheConeAndSlipIsReported) {
     }
   }
   EXPECT_GT(frames_in_contact, 20);
+}
+
+}  // namespace
+}  // namespace vibrissa::dynamics
+
+
+namespace vibrissa::dynamics {
+namespace {
+
+TEST(DynamicsContact, SlowSweepAgainstAFrictionalEdgeConvergesToTheQuasiStaticFrictionalEdgeSequence) {
+  // The curved whisker swept 0.2 rad into an edge tilted 45 degrees out of the whisking plane, mu = 0.3: on touch
+  // the contact slides along the edge (slip), then holds (stick) as the whisker presses on. The quasi-static answer
+  // is solve_frictional_edge's sequence with the contact's history from the touch point. The dynamics' friction
+  // force lies across the whisker (it slides freely along its length), |F . e| <= mu |F - (F . e) e| as the
+  // static law; the gap to the static sequence closes in proportion to the sweep rate.
+  const Whisker w = curved_whisker(30);
+  DynamicsProperties dp;
+  const LinearModel model = linear_model(w, dp);
+  const Modes all = modes(model, w);
+  const double mu = 0.3;
+  LineObstacle ob = edge_ahead(w, 0.02, 5e-4, mu);
+  ob.direction_W = Eigen::Vector3d(1.0, 0.0, 1.0).normalized();
+  std::vector<double> errors;
+  for (double T : {0.1, 0.2}) {
+    SimulationOptions opt;
+    opt.duration = T + 0.05;
+    opt.output_rate = 200;
+    opt.record_nodes = false;
+    opt.objects = {ob};
+    const BaseTrajectory base = smooth_sweep(0.2, T);
+    const TimeSeries ts = simulate(w, model, all, base, dp.gravity_W, opt);
+    ASSERT_EQ(ts.status, SimulationStatus::completed);
+    // touch, slip, stick: no chatter of stick/slip pairs, no release.
+    ASSERT_EQ(ts.events.size(), 3u);
+    EXPECT_EQ(ts.events[1].type, ContactEventType::slip);
+    EXPECT_EQ(ts.events[2].type, ContactEventType::stick);
+    const Comparison c = against_quasi_static(w, base, ob, ts);
+    // The static sequence slips, then sticks, as the dynamics.
+    ASSERT_FALSE(c.friction.empty());
+    EXPECT_EQ(c.friction.front(), FrictionState::slip);
+    EXPECT_EQ(c.friction.back(), FrictionState::stick);
+    errors.push_back(c.worst / c.peak);
+    for (std::size_t f = 0; f < ts.time.size(); ++f) {
+      if (ts.contacts[0].state[f] == ContactState::none) continue;
+      const Eigen::Vector3d& F = ts.contacts[0].force_W[f];
+      const double along = F.dot(ob.direction_W), normal = (F - along * ob.direction_W).norm();
+      EXPECT_LE(std::abs(along), mu * normal * (1.0 + 1e-9));
+      if (ts.contacts[0].state[f] == ContactState::slip) {
+        EXPECT_NEAR(std::abs(along), mu * normal, 1e-9 * normal);
+      }
+    }
+    std::printf("frictional sweep over %.2f s: %ld steps (%ld rejected), largest base-moment gap to the quasi-static "
+                "frictional-edge sequence %.3g of its peak\n", T, ts.steps, ts.rejected_steps, errors.back());
+  }
+  EXPECT_LT(errors.back(), 6e-3);
+  EXPECT_GT(errors[0] / errors[1], 1.6);  // first order in the sweep rate
+  EXPECT_LT(errors[0] / errors[1], 2.4);
 }
 
 }  // namespace

@@ -3,10 +3,11 @@
 // a radius from a line (a peg, a cylinder's side, an edge), met by the whisker as a unilateral contact with
 // Coulomb friction. The normal force is a stiff penalty, F_n = max(0, k_n (-g) - c_n g'), g the gap (< 0:
 // penetration), so the penetration is F_n / k_n (the stated tolerance); c_n damps the contact critically for the
-// whisker's effective mass there (damping_ratio). Friction acts along the line (the whisker slides freely along
-// its own length, as in the quasi-static frictional edge mode, spec §3.1): an elastic-plastic stick spring of
-// stiffness k_t from an anchor point on the line, |F_t| <= mu F_n; beyond it the anchor slides (slip) with
-// |F_t| = mu F_n opposing the slip. Events: touch, slip (onset), stick, release.
+// whisker's effective mass there (damping_ratio). Friction has the quasi-static frictional edge mode's law (spec
+// §3.1, solve_frictional_edge): the whisker slides freely along its own length, so the friction force lies across
+// the whisker; an elastic-plastic stick spring of stiffness k_t holds the contact's place along the line at an
+// anchor while |F . e| <= mu |F - (F . e) e| (e the line's direction); beyond it the anchor slides (slip) with
+// the bound met, opposing the slip (docs/dynamics.md, "Contact during motion"). Events: touch, slip (onset), stick, release.
 #include <string>
 #include <string_view>
 #include <vector>

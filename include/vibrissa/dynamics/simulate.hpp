@@ -34,8 +34,8 @@ BaseTrajectory fixed_base(const Placement& placement);
 
 /// Which equations of motion (docs/dynamics.md): `linear` (the linearised chain above, trapezoidal rule mode by
 /// mode); `nonlinear` (the chain's exact kinematics: large rotations of the joints, contact forces through the
-/// deflected shape; the same joint springs, dampers and rest mass matrix; L-stable SDIRK2 with step doubling,
-/// order 2); `automatic`: nonlinear when there are objects, else linear.
+/// deflected shape; the same joint springs, dampers and rest mass matrix; L-stable TR-BDF2 with its embedded
+/// error estimate, order 2); `automatic`: nonlinear when there are objects, else linear.
 enum class ChainModel { automatic, linear, nonlinear };
 std::string_view to_string(ChainModel model);
 

@@ -1,0 +1,303 @@
+#!/usr/bin/env python3
+"""The WHISKiT comparison of issue 27 point 7 (docs/performance.md, "The array and WHISKiT").
+
+Two sub-commands, both driven by the same `vibrissa array` configuration (the default scene: the 31 right
+whiskers of Towal 2011, the default whisk, +/-30 deg at 8 Hz about a 10 deg set point with Knutsen's slopes, the
+default peg at (20, -8, -3) mm), 1 s at 1 kHz:
+
+  inputs DIR   writes the inputs WHISKiT (SeNSE-lab/whiskitphysics, built separately; nothing of it is in this
+               repository) needs to simulate the same whiskers and whisk, in the layout its binary reads relative
+               to its working directory: DIR/data/whisker_param_average_rat/{param_name, param_side_row_col,
+               param_s_a, param_angles, param_bp_pos, whisking_init_angle, whisking_trajectory}.csv, the rat-head
+               mesh copied from a WHISKiT checkout (--whiskit-data), and DIR/run/ to run it from. The files are
+               written from vibrissa's own array (names, base points, S, A and the angles of every 1 ms step), in
+               the formats WHISKiT's readers expect (read in its src/Whisker.cpp, src/Rat.cpp, src/Simulation.cpp):
+               angles in radians in the placement Rz(theta - 90 deg) Ry(-phi) Rx(zeta) of the data sheet, 20 link
+               angles per whisker, and per whisker a row of 3 world-frame angular velocities [rad/s] of the
+               follicle per 1 ms step (here the exact rotation between consecutive steps over the step).
+               Prints the WHISKiT command line that places the peg where vibrissa's is.
+  ours         runs `vibrissa array CONFIG --dynamics` on the same scene under /usr/bin/time -v and prints its
+               CPU and wall time and the load average.
+  peg-whisker NAME|all
+               one whisker of the scene (e.g. C1R: the array's shape, placement and whisk, checked against the
+               array's) or every one in turn through `vibrissa.simulate_dynamics` against the scene's peg with
+               WHISKiT's radius (1 mm) and friction (0.25), 1 s at 1 kHz, N = 100, and prints the CPU time, steps
+               and events: the contact side, while `vibrissa array --dynamics` does not touch objects.
+
+Usage: /usr/bin/python3 bench/whiskit_compare.py inputs /tmp/whiskit_inputs --whiskit-data PATH/code/data
+       /usr/bin/python3 bench/whiskit_compare.py ours [--vibrissa build/bin/vibrissa] [--threads 1] [--links N]
+       /usr/bin/python3 bench/whiskit_compare.py peg-whisker C1R [--duration 1] [--mu 0.25] [--peg-radius-mm 1]
+(PYTHONPATH=build/python for `inputs`.)"""
+import argparse
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+STEP_S = 1e-3            # WHISKiT's TIME_STEP (its Parameters.cpp); the whisking file has one column triple per step
+LINKS = 20               # WHISKiT's NUM_LINKS
+DURATION_S = 1.0
+EXTRA_STEPS = 10         # WHISKiT stops at min(TIME_STOP, (steps - 1) * TIME_STEP): give it a few more steps
+# WHISKiT puts the array origin at (0, 26, 4) mm from its head (Rat.h originOffset) and its peg (OBJECT 1, a
+# cylinder of radius 1 mm along z, Simulation.cpp) at (20, 25, 0) mm. Head position that puts vibrissa's head
+# frame H at world = H + (0, 33, 0) mm, i.e. WHISKiT's peg axis through vibrissa's peg point (20, -8) mm.
+WHISKIT_HEAD_POSITION_MM = (0.0, 7.0, -4.0)
+# WHISKiT's follicle joint (Whisker.cpp, motorConstraint) limits each Euler angle of the follicle, relative to its
+# pose at t = 0, to [-60, 30] deg on the right side. The default whisk starts fully retracted and sweeps 60 deg, so
+# it would run into the limit at full protraction (measured: the follicle stops 1.5-1.8 deg short). Starting the
+# same whisk at phase 60 deg (dtheta = -5 deg, protracting) keeps every whisker's follicle inside the limits.
+PHASE_DEG = 60.0
+
+
+def scene(frames: int, end_s: float, peg: bool = True, links: int = 0) -> dict:
+    """The comparison's `vibrissa array` config: the default scene over `frames` frames to `end_s` (links > 0:
+    that many links per whisker instead of the default 100)."""
+    import vibrissa
+    config = vibrissa.default_array_config()
+    config["time"] = {"start_s": 0.0, "end_s": end_s, "frames": frames}
+    config["whisking"]["phase_deg"] = PHASE_DEG
+    if not peg:  # far out of reach: only the kinematics are wanted
+        config["objects"] = [{"type": "peg", "frame": "world", "point_mm": [1000.0, 1000.0, 0.0]}]
+    config["output"] = {"render_count": 1}
+    if links > 0:
+        config["solver"]["links"] = links
+    return config
+
+
+def rotation(theta, phi, zeta):
+    """Rz(theta - 90 deg) Ry(-phi) Rx(zeta) (data sheet section 2), angles in rad, shape (..., 3, 3)."""
+    def rz(a):
+        c, s = np.cos(a), np.sin(a)
+        z, o = np.zeros_like(a), np.ones_like(a)
+        return np.stack([np.stack([c, -s, z], -1), np.stack([s, c, z], -1), np.stack([z, z, o], -1)], -2)
+
+    def ry(a):
+        c, s = np.cos(a), np.sin(a)
+        z, o = np.zeros_like(a), np.ones_like(a)
+        return np.stack([np.stack([c, z, s], -1), np.stack([z, o, z], -1), np.stack([-s, z, c], -1)], -2)
+
+    def rx(a):
+        c, s = np.cos(a), np.sin(a)
+        z, o = np.zeros_like(a), np.ones_like(a)
+        return np.stack([np.stack([o, z, z], -1), np.stack([z, c, -s], -1), np.stack([z, s, c], -1)], -2)
+    return rz(theta - np.pi / 2) @ ry(-phi) @ rx(zeta)
+
+
+def rotation_vector(R):
+    """log of rotation matrices (..., 3, 3) -> rotation vectors (..., 3)."""
+    cos = np.clip((np.trace(R, axis1=-2, axis2=-1) - 1.0) / 2.0, -1.0, 1.0)
+    angle = np.arccos(cos)
+    axis = np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], -1)
+    scale = np.where(angle > 1e-12, angle / (2.0 * np.sin(np.maximum(angle, 1e-12))), 0.5)
+    return axis * scale[..., None]
+
+
+def parabola_nodes(S_mm: float, A_per_mm: float, count: int):
+    """`count` points at equal arc length along (x, A x^2) from x = 0 to arc length S (mm)."""
+    x = np.linspace(0.0, S_mm, 20001)
+    y = A_per_mm * x ** 2
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
+    targets = np.linspace(0.0, S_mm, count)
+    xs = np.interp(targets, s, x)
+    return np.stack([xs, A_per_mm * xs ** 2], -1)
+
+
+def link_angles(S_mm: float, A_per_mm: float):
+    """WHISKiT's param_angles row: 20 relative link angles [rad] of the parabola's chords, the first link along
+    the follicle's x axis (angle 0), the k-th (k >= 1) at its chord's direction; negative = toward -y of the link
+    frame, which WHISKiT's placement takes to -z of the whisker frame (the data sheet's (x, 0, -A x^2))."""
+    nodes = parabola_nodes(S_mm, A_per_mm, LINKS + 1)
+    d = np.diff(nodes, axis=0)
+    absolute = np.arctan2(d[:, 1], d[:, 0])
+    absolute[0] = 0.0
+    relative = np.diff(np.concatenate([[0.0], absolute]))
+    return -relative
+
+
+def write_csv(path: pathlib.Path, rows, fmt="%.9g"):
+    with open(path, "w") as f:
+        for row in rows:
+            f.write(",".join(fmt % v if not isinstance(v, str) else v for v in row) + "\n")
+
+
+def cmd_inputs(args) -> int:
+    import vibrissa
+    steps = int(round(DURATION_S / STEP_S)) + EXTRA_STEPS
+    frames = steps + 1
+    result = vibrissa.simulate_array(scene(frames, steps * STEP_S, peg=False))
+    names = [str(n) for n in result["whisker"]]
+    row, column = result["row"].astype(int), result["column"].astype(int)
+    theta, phi, zeta = result["theta"], result["phi"], result["zeta"]      # (whiskers, frames), rad
+    base_mm = result["base_W"][0, :, 0, :] * 1e3
+    R = rotation(theta, phi, zeta)                                          # (whiskers, frames, 3, 3)
+    shown = int(result["render/frame"][0])                                  # the rendered frame
+    rest_mm = result["render/rest"][0].astype(float) * 1e3                  # (whiskers, nodes, 3) there
+    rest_base_mm = result["base_W"][0, :, shown, :] * 1e3
+
+    # S and A of every whisker from vibrissa's rest shape: arc length and the parabola through the tip.
+    S, A, fit = [], [], []
+    for w in range(len(names)):
+        local = (rest_mm[w] - rest_base_mm[w]) @ R[w, shown]  # rows: R^T (p - base), the whisker frame
+        S.append(float(np.sum(np.linalg.norm(np.diff(rest_mm[w], axis=0), axis=1))))
+        x, z = local[:, 0], local[:, 2]
+        A.append(float(-np.sum(z * x ** 2) / np.sum(x ** 4)))
+        fit.append(float(np.max(np.abs(np.hypot(local[:, 1], z + A[-1] * x ** 2)))))
+    print(f"{len(names)} whiskers; rest shapes vs (x, 0, -A x^2) in the Rz Ry Rx placement: largest gap "
+          f"{max(fit) * 1e3:.2g} um")
+
+    out = pathlib.Path(args.dir)
+    data = out / "data" / "whisker_param_average_rat"
+    data.mkdir(parents=True, exist_ok=True)
+    (out / "run").mkdir(exist_ok=True)
+    (out / "data" / "object").mkdir(exist_ok=True)
+    head = pathlib.Path(args.whiskit_data) / "object" / "NewRatHead.obj"
+    if head.exists():
+        shutil.copy(head, out / "data" / "object" / "NewRatHead.obj")
+    else:
+        print(f"warning: {head} not found: WHISKiT needs its rat-head mesh at {out}/data/object/", file=sys.stderr)
+    whiskit_names = ["R" + n[:-1] for n in names]             # A0R -> RA0
+    with open(data / "param_name.csv", "w") as f:
+        f.write("".join(n + "\n" for n in whiskit_names))
+    write_csv(data / "param_side_row_col.csv", [(1, r, c) for r, c in zip(row, column)], "%d")
+    write_csv(data / "param_s_a.csv", zip(S, A))
+    write_csv(data / "param_angles.csv", [link_angles(s, a) for s, a in zip(S, A)])
+    write_csv(data / "param_bp_pos.csv", base_mm)
+    write_csv(data / "param_bp_angles.csv", np.stack([theta[:, 0], phi[:, 0], zeta[:, 0]], -1))
+    write_csv(data / "whisking_init_angle.csv", np.stack([theta[:, 0], phi[:, 0], zeta[:, 0]], -1))
+    # angular velocity over step k (k = 1..steps): the rotation from frame k-1 to frame k, world frame, / step
+    omega = rotation_vector(R[:, 1:] @ np.swapaxes(R[:, :-1], -1, -2)) / STEP_S   # (whiskers, steps, 3)
+    write_csv(data / "whisking_trajectory.csv", omega.reshape(len(names), -1))
+    print(f"wrote {data} ({steps} steps of {STEP_S * 1e3:g} ms); peak |omega| {np.abs(omega).max():.3g} rad/s")
+    position = " ".join(f"{v:g}" for v in WHISKIT_HEAD_POSITION_MM)
+    print("run from", out / "run", ":")
+    print(f"  /usr/bin/time -v WHISKIT/code/build/whiskit --MODEL_TYPE 0 --ACTIVE 1 --OBJECT 1 --SPEED 0 "
+          f"--POSITION {position} --ORIENTATION 0 0 0 --TIME_STOP {DURATION_S + STEP_S / 2:g} --PRINT 0 "
+          f"--SAVE 1 --dir_out ../output/peg --WHISKER_NAMES {' '.join(whiskit_names)}")
+    return 0
+
+
+def cmd_ours(args) -> int:
+    frames = int(round(DURATION_S / STEP_S)) + 1
+    with tempfile.TemporaryDirectory() as tmp:
+        config = pathlib.Path(tmp) / "scene.json"
+        config.write_text(json.dumps(scene(frames, DURATION_S, peg=True, links=args.links)))
+        command = [args.vibrissa, "array", str(config), "--dynamics", "--no-figures", "--threads",
+                   str(args.threads), "--out", str(pathlib.Path(tmp) / "out")]
+        load = os.getloadavg()[0]
+        run = subprocess.run(["/usr/bin/time", "-v"] + command, capture_output=True, text=True)
+        if run.returncode != 0:
+            print(run.stdout, run.stderr, file=sys.stderr)
+            return 1
+        times = {}
+        for line in run.stderr.splitlines():
+            key, _, value = line.strip().partition(": ")
+            times[key] = value
+        summary = json.loads((pathlib.Path(tmp) / "out" / "summary.json").read_text())
+    user, system = float(times["User time (seconds)"]), float(times["System time (seconds)"])
+    print(" ".join(command[:2]) + " SCENE.json " + " ".join(command[3:-2]))
+    print(f"31 whiskers x {DURATION_S:g} s, N = {args.links or 100}, {frames} frames: CPU {user + system:.2f} s (user {user:.2f}, "
+          f"sys {system:.2f}), wall {times['Elapsed (wall clock) time (h:mm:ss or m:ss)']}, "
+          f"load average {load:.1f} -> {os.getloadavg()[0]:.1f}")
+    print("dynamics:", json.dumps(summary.get("dynamics", {}))[:400])
+    return 0
+
+
+def array_kinematics(frames: int = 101):
+    """The scene's array over its first 0.1 s (placements and angles only): the input of array_whisker_case."""
+    import vibrissa
+    return vibrissa.simulate_array(scene(frames, 0.1, peg=False))
+
+
+def array_whisker_case(name: str, peg_radius_m: float, mu: float, result=None):
+    """One whisker of the scene as `vibrissa.simulate_dynamics` arguments: the whisker (S, A, Belli's base radius,
+    taper 15, placed as the array places it, vibrissa's angles), the whisk with its row's slopes (fitted to the
+    array's own angle series, so they are the array's), and the scene's peg with a radius."""
+    import vibrissa
+    result = array_kinematics() if result is None else result
+    frames = len(result["time"])
+    names = [str(n) for n in result["whisker"]]
+    w = names.index(name)
+    row, column = int(result["row"][w]), int(result["column"][w])
+    theta, phi, zeta = result["theta"][w], result["phi"][w], result["zeta"][w]
+    base_m = result["base_W"][0, w, 0, :]
+    shown = int(result["render/frame"][0])
+    rest = result["render/rest"][0, w].astype(float)
+    S = float(np.sum(np.linalg.norm(np.diff(rest, axis=0), axis=1)))
+    local = (rest - result["base_W"][0, w, shown, :]) @ rotation(theta, phi, zeta)[shown]
+    A = float(-np.sum(local[:, 2] * local[:, 0] ** 2) / np.sum(local[:, 0] ** 4))      # 1/m
+    whisking = scene(frames, 0.1)["whisking"]
+    t = np.linspace(0.0, 0.1, frames)
+    dtheta = np.radians(whisking["set_point_deg"] - whisking["amplitude_deg"] *
+                        np.cos(2 * np.pi * whisking["frequency_Hz"] * t + np.radians(whisking["phase_deg"])))
+    theta_rest = float(np.mean(theta - dtheta))
+    k_phi = float(np.polyfit(dtheta, phi, 1)[0])
+    k_zeta = float(np.polyfit(dtheta, zeta, 1)[0])
+    phi_rest = float(np.mean(phi - k_phi * dtheta))
+    zeta_rest = float(np.mean(zeta - k_zeta * dtheta))
+    d_base_mm = 0.041 + 0.002 * S * 1e3 + 0.011 * row - 0.0039 * column       # Belli 2018 (docs/array.md)
+    whisker = vibrissa.make_whisker(length=S, curvature=A, links=100, base_radius=d_base_mm / 2 * 1e-3,
+                                    taper_ratio=15,
+                                    pose={"base": base_m.tolist(), "theta": theta_rest - np.pi / 2,
+                                          "phi": phi_rest, "zeta": zeta_rest - np.pi / 2})
+    peg = scene(frames, 0.1)["objects"][0]
+    objects = [{"type": "peg", "point": [v * 1e-3 for v in peg["point_mm"]], "direction": [0, 0, 1],
+                "radius": peg_radius_m, "friction_coefficient": mu}]
+    whisking = dict(whisking, k_phi=k_phi, k_zeta=k_zeta)
+    whisking.pop("slopes", None)
+    at_shown = vibrissa.make_whisker(length=S, curvature=A, links=100,
+                                     pose={"base": result["base_W"][0, w, shown, :].tolist(),
+                                           "theta": float(theta[shown]) - np.pi / 2, "phi": float(phi[shown]),
+                                           "zeta": float(zeta[shown]) - np.pi / 2})
+    gap = float(np.abs(np.asarray(at_shown.rest_nodes_W) - rest).max())
+    return whisker, whisking, objects, gap
+
+
+def cmd_peg_whisker(args) -> int:
+    import resource
+    import vibrissa
+    kinematics = array_kinematics()
+    names = [str(n) for n in kinematics["whisker"]] if args.name == "all" else [args.name]
+    total, load = 0.0, os.getloadavg()[0]
+    for name in names:
+        whisker, whisking, objects, gap = array_whisker_case(name, args.peg_radius_mm * 1e-3, args.mu, kinematics)
+        print(f"{name}: shape and placement as the array's to {gap * 1e6:.2g} um; whisking {json.dumps(whisking)}")
+        start = resource.getrusage(resource.RUSAGE_SELF)
+        result = vibrissa.simulate_dynamics(whisker, args.duration, 1000.0, whisking=whisking, objects=objects)
+        end = resource.getrusage(resource.RUSAGE_SELF)
+        cpu = (end.ru_utime - start.ru_utime) + (end.ru_stime - start.ru_stime)
+        total += cpu
+        kinds = [e["type"] for e in result.events]
+        print(f"{name} against the peg (radius {args.peg_radius_mm:g} mm, mu {args.mu:g}), {args.duration:g} s, "
+              f"1 kHz, N = 100: CPU {cpu:.2f} s, steps {result.summary['steps']} "
+              f"(rejected {result.summary['rejected_steps']}), status {result.summary['status']}, events "
+              f"{ {k: kinds.count(k) for k in sorted(set(kinds))} }", flush=True)
+    print(f"{len(names)} whisker(s): CPU {total:.2f} s in all, load average {load:.1f} -> {os.getloadavg()[0]:.1f}")
+    return 0
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("inputs")
+    p.add_argument("dir")
+    p.add_argument("--whiskit-data", default="/work/whiskit/code/data")
+    p = sub.add_parser("ours")
+    p.add_argument("--vibrissa", default="build/bin/vibrissa")
+    p.add_argument("--threads", type=int, default=1)
+    p.add_argument("--links", type=int, default=0, help="links per whisker (default: the config's, 100)")
+    p = sub.add_parser("peg-whisker")
+    p.add_argument("name", help="a whisker of the array, e.g. C1R, or 'all': every whisker, one after the other")
+    p.add_argument("--duration", type=float, default=DURATION_S)
+    p.add_argument("--peg-radius-mm", type=float, default=1.0, help="WHISKiT's peg: 1 mm")
+    p.add_argument("--mu", type=float, default=0.25, help="WHISKiT's: 0.5 x 0.5 (Bullet multiplies frictions)")
+    args = parser.parse_args()
+    return {"inputs": cmd_inputs, "ours": cmd_ours, "peg-whisker": cmd_peg_whisker}[args.command](args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
