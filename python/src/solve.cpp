@@ -222,6 +222,23 @@ void bind_solve(py::module_& m) {
           "smallest gap over the whisker) and clearance_arc_length [m]; None otherwise.")
       .def_readonly("second_contact_arc_length", &Solution::second_contact_arc_length,
                     "Status.second_contact: where the whisker would enter the object [m], else None.")
+      .def_property_readonly(
+          "second_contact",
+          [](const Solution& s) -> py::object {
+            if (!s.second_contact) return py::none();
+            const SecondContact& c = *s.second_contact;
+            py::dict d;
+            d["arc_length"] = c.arc_length;
+            d["contact_point_W"] = to_array(c.contact_point_W);
+            d["force_W"] = to_array(c.force_W);
+            d["normal_W"] = to_array(c.normal_W);
+            d["normal_force"] = c.normal_force;
+            d["feature"] = std::string(to_string(c.feature));
+            return d;
+          },
+          "Object modes: a second contact solved with the first (a dict: arc_length [m], contact_point_W, force_W "
+          "(its own force [N]), normal_W, normal_force [N], feature); force_W, moment_W and the whisker-frame "
+          "signals are then the totals at the base. None otherwise.")
       .def_readonly("other_root_arc_length", &Solution::other_root_arc_length,
                     "Arc length [m] of another root, when options.find_other_roots found one, else None.")
       .def_property_readonly(

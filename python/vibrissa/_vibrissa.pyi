@@ -202,6 +202,7 @@ class WhiskerFrameSignals:
 class Solution:
     surface: Optional[dict[str, Any]]
     second_contact_arc_length: Optional[float]
+    second_contact: Optional[dict[str, Any]]
     @property
     def status(self) -> Status: ...
     @property

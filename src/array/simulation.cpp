@@ -108,7 +108,10 @@ class PairRun {
     const auto& nodes_B = rest_.rest_nodes_B();
     const std::size_t n = nodes_B.size();
     std::vector<Eigen::Vector3d> bent;
-    if (fr.state == ContactState::contact) deflected_shape(rest_, X, fr.solution.state, bent);
+    if (fr.state == ContactState::contact) {
+      if (fr.solution.second_contact) bent = fr.solution.shape_W;  // two contacts: not the state's load alone
+      else deflected_shape(rest_, X, fr.solution.state, bent);
+    }
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t at = ((ri * r_.n_whiskers + w_) * n + i) * 3;
       const Eigen::Vector3d rest = X.to_world(nodes_B[i]);

@@ -372,6 +372,17 @@ json solution_to_json(const Solution& s) {
     j["surface"] = nullptr;
   }
   j["second_contact_arc_length"] = s.second_contact_arc_length ? json(*s.second_contact_arc_length) : json(nullptr);
+  if (s.second_contact) {  // two contacts solved together (docs/objects.md, "Two contacts")
+    const SecondContact& c = *s.second_contact;
+    j["second_contact"] = {{"arc_length", c.arc_length},
+                           {"contact_point_W", to_json(c.contact_point_W)},
+                           {"force_W", to_json(c.force_W)},
+                           {"normal_W", to_json(c.normal_W)},
+                           {"normal_force", c.normal_force},
+                           {"feature", std::string(to_string(c.feature))}};
+  } else {
+    j["second_contact"] = nullptr;
+  }
   j["residual"] = s.residual;
   j["iterations"] = s.iterations;
   json shape = json::array();

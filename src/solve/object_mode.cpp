@@ -99,7 +99,11 @@ Touch first_touch(const Whisker& w, const ObjectGeometryB& g, const DeepestPoint
   // evaluation is a clearance query of the whole whisker: this takes a few where bisection took dozens.
   double f_lo = gap(lo).gap, f_hi = at_hi.gap;
   int kept = 0;  // +1: lo was kept last time, -1: hi
-  for (int i = 0; i < 100 && hi - lo > 1e-13 * w.length(); ++i) {
+  // The touch is the continuation's start, not a solution: its first step moves the object by a quarter of the
+  // way, so a touch within 1e-6 of the depth (the whisker clear of the object by at most that) starts the same
+  // path (was 1e-13 of the length: dozens of whole-whisker clearance queries).
+  const double precision = std::max(1e-6 * hi, 1e-13 * w.length());
+  for (int i = 0; i < 100 && hi - lo > precision; ++i) {
     double x = std::isfinite(f_hi) && f_lo < 0.0 ? lo + (hi - lo) * (-f_lo) / (f_hi - f_lo) : 0.5 * (lo + hi);
     if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
     const Clearance c = gap(x);
@@ -536,10 +540,9 @@ void two_contact_solution(const Whisker& w, const Placement& X, const TwoContact
   second.feature = two.feature[1];
   out.second_contact = second;
   out.second_contact_arc_length.reset();
-  if (!out.shape_W.empty()) {
-    out.shape_W.clear();
-    for (const auto& p : two.nodes_B) out.shape_W.push_back(X.to_world(p));
-  }
+  // The shape always (the state holds the first contact's load alone: deflected_shape() of it is not this one).
+  out.shape_W.clear();
+  for (const auto& p : two.nodes_B) out.shape_W.push_back(X.to_world(p));
   set_status(out, Status::converged, "two contacts on the whisker's side");
 }
 

@@ -144,7 +144,10 @@ Trial synthesize_trial(const SynthOptions& o, SynthStats* stats, const RunContro
     }
     if (o.shapes) {  // the tracked shape: deflected in contact frames, the rest shape otherwise
       const double L = rest.length();
-      if (t.contact[i]) deflected_shape(rest, X, fr.solution.state, bent);
+      if (t.contact[i]) {
+        if (fr.solution.second_contact) bent = fr.solution.shape_W;  // two contacts: not the state's load alone
+        else deflected_shape(rest, X, fr.solution.state, bent);
+      }
       for (int k = 0; k < o.shape_nodes; ++k) {
         const double s_k = L * k / (o.shape_nodes - 1);
         if (!t.contact[i]) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <vector>
 
@@ -81,4 +82,58 @@ TEST(TrackerObjects, ProtractionIntoASphereAndItsMesh) {
   EXPECT_GT(contacts, 5);      // a run of contact frames
   EXPECT_GE(both, 3);  // measured: 3 of the sphere's protraction contact frames also converge on the mesh
   EXPECT_EQ(a.back().state, ContactState::free);  // released on retraction
+}
+
+// Whiskers whisking against small meshes (a 1,280-triangle sphere, a 64-facet cylinder) through the tracker, as
+// `vibrissa array` runs them (issue 24): at every frame in contact no point of the deflected whisker is inside the
+// mesh (>= -1e-9 m), or the frame's status is typed and says where (second_contact with the arc length at which
+// the whisker is inside; slipped_off: pushed past).
+TEST(TrackerObjects, WhiskingAgainstMeshesNeverPenetratesSilently) {
+  const Eigen::Vector3d centre(0.018, 0.006, 0.0);
+  const Mesh ball(tessellated_sphere(centre, 0.002, 3));
+  const Mesh peg(tessellated_cylinder(centre - Eigen::Vector3d(0.0, 0.0, 0.01), 0.0015, 0.02, 64, 8));
+  int contact = 0, converged = 0, two = 0, second = 0, slipped = 0;
+  for (const Mesh* mesh : {&ball, &peg}) {
+    const PlacedShape placed{mesh, {}};
+    for (int whisker = 0; whisker < 4; ++whisker) {
+      WhiskerProperties p;
+      p.links = 60;
+      const Whisker w = Whisker::from_parabola(0.026 + 0.004 * whisker, 8.0 + 3.0 * whisker, p);
+      TrackerOptions o;
+      o.solve.compute_shape = true;
+      ContactTracker tracker(w, o);
+      for (int k = 0; k < 80; ++k) {  // protraction from -10 to +40 deg and back, at elevation and roll
+        const double phase = k < 40 ? k / 39.0 : (79 - k) / 39.0;
+        Pose pose;
+        pose.theta = (-10.0 + 50.0 * phase) * std::numbers::pi / 180.0;
+        pose.phi = (-6.0 + 4.0 * whisker) * std::numbers::pi / 180.0;
+        pose.zeta = 0.3 * whisker;
+        const Placement X(pose);
+        const TrackedFrame& f = tracker.step(X, std::span<const PlacedShape>(&placed, 1));
+        if (f.state == ContactState::pushed_past) ++slipped;
+        if (f.state != ContactState::contact) continue;
+        ++contact;
+        const Solution& s = f.solution;
+        std::vector<Eigen::Vector3d> nodes = s.shape_W;
+        if (nodes.empty()) deflected_shape(w, X, s.state, nodes);
+        const Clearance c = clearance(placed, nodes, w.node_arc_lengths(), w.node_radii());
+        if (s.status == Status::converged) {
+          ++converged;
+          if (s.second_contact) ++two;
+          EXPECT_GE(c.gap, -1e-9) << "whisker " << whisker << " frame " << k;
+        } else if (s.status == Status::second_contact) {
+          ++second;
+          ASSERT_TRUE(s.second_contact_arc_length);
+          EXPECT_LT(c.gap, -1e-9);
+          EXPECT_NEAR(c.arc_length, *s.second_contact_arc_length, 1e-12);
+        } else {
+          ADD_FAILURE() << "frame " << k << " in contact with status " << to_string(s.status);
+        }
+      }
+    }
+  }
+  std::printf("whisking against meshes: %d frames in contact, %d converged (%d with two contacts), %d second "
+              "contacts, %d frames pushed past\n", contact, converged, two, second, slipped);
+  EXPECT_GT(contact, 100);
+  EXPECT_LE(second, contact / 20);
 }

@@ -88,7 +88,8 @@ struct SurfaceContact {
 /// The second of two contacts solved together (object modes, frictionless: docs/objects.md, "Two contacts").
 /// The Solution's contact fields (arc_length, contact_point_W, normal_force, surface, state) are the first
 /// contact's; force_W, moment_W, force_magnitude and whisker_frame are the totals at the base; the first contact's
-/// own force is force_W - second_contact->force_W.
+/// own force is force_W - second_contact->force_W. shape_W is always filled (deflected_shape() of `state`, the
+/// first contact's load alone, is not the two contacts' shape).
 struct SecondContact {
   double arc_length = 0.0;                                    ///< [m]
   Eigen::Vector3d contact_point_W = Eigen::Vector3d::Zero();  ///< on the object [m]
