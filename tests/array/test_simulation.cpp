@@ -364,5 +364,21 @@ TEST(ArrayDynamics, AWhiskerWhiskingIntoThePegTouchesItAsTheQuasiStaticRunDoes) 
               events.front().time, quasi.times[static_cast<std::size_t>(onset)], peak_dyn, peak_quasi);
 }
 
+// Events are contact episodes: D3 slides off the peg's line across the nodes between its links, and each node
+// let the penalty contact go for 1-100 us (every 0.1-0.4 ms; 419 events in 1 s before such releases were merged):
+// touch, release, touch, then one release as it slides off (0.127 s), not a touch/release pair per node.
+TEST(ArrayDynamics, AContactSlidingAcrossTheNodesIsOneEpisode) {
+  json j = base_config();
+  j["morphology"]["whiskers"] = json::array({"D3"});
+  j["time"] = {{"start_s", 0.0}, {"end_s", 0.13}, {"frames", 131}};
+  j["dynamics"] = json::object();
+  const ArrayResult dyn = simulate_array(io::array_config_from_json(j));
+  ASSERT_EQ(dyn.contact_events.size(), 1u);
+  const auto& events = dyn.contact_events[0];
+  std::string types;
+  for (const auto& e : events) types += std::string(dynamics::to_string(e.type)) + " ";
+  EXPECT_EQ(types, "touch release touch release ") << events.size() << " events";
+}
+
 }  // namespace
 }  // namespace vibrissa::array
