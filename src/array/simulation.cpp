@@ -15,6 +15,7 @@
 #include "vibrissa/solve/solvers.hpp"
 #include "vibrissa/dynamics/air_drag.hpp"
 #include "vibrissa/dynamics/simulate.hpp"
+#include "vibrissa/solve/whisker_frame_signals.hpp"
 
 namespace vibrissa::array {
 namespace {
@@ -219,10 +220,11 @@ void run_dynamics(const SimulationConfig& c, const Prepared& prep, ArrayResult& 
       r.normal_force[k] = (Fc - r.edge_force[k] * e.direction).norm();
       r.z_edge[k] = e.coordinate(ts.contacts[e_index].point_W[f]);
     }
-    r.FT[k] = std::hypot(F.y(), F.z());
-    r.MB[k] = std::hypot(M.y(), M.z());
-    r.FD[k] = std::atan2(F.z(), F.y());
-    r.MD[k] = std::atan2(M.z(), M.y());
+    const WhiskerFrameSignals sig = whisker_frame_signals(F, M);
+    r.FT[k] = sig.FT;
+    r.MB[k] = sig.MB;
+    r.FD[k] = sig.FD;
+    r.MD[k] = sig.MD;
     if (render_run && prep.render_index[f] >= 0) {
       const std::size_t ri = static_cast<std::size_t>(prep.render_index[f]);
       const auto& nodes_B = rest.rest_nodes_B();

@@ -18,6 +18,7 @@
 #include "vibrissa/io/json_file.hpp"
 #include "vibrissa/io/json_input.hpp"
 #include "vibrissa/io/output_folder.hpp"
+#include "vibrissa/solve/whisker_frame_signals.hpp"
 
 namespace vibrissa::io {
 namespace {
@@ -366,12 +367,11 @@ std::vector<Column> scalar_columns(const dynamics::TimeSeries& ts) {
   vec(ts.moment_W, "M", "_W", "N m", "moment on the follicle about the base, world frame");
   std::vector<double> FT(n), MB(n), FD(n), MD(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto& F = ts.force_B[i];
-    const auto& M = ts.moment_B[i];
-    FT[i] = std::hypot(F.y(), F.z());
-    MB[i] = std::hypot(M.y(), M.z());
-    FD[i] = std::atan2(F.z(), F.y());
-    MD[i] = std::atan2(M.z(), M.y());
+    const WhiskerFrameSignals sig = whisker_frame_signals(ts.force_B[i], ts.moment_B[i]);
+    FT[i] = sig.FT;
+    MB[i] = sig.MB;
+    FD[i] = sig.FD;
+    MD[i] = sig.MD;
   }
   cols.push_back({"FT", FT, "N", "transverse force at the base"});
   cols.push_back({"MB", MB, "N m", "bending moment at the base"});

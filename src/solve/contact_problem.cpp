@@ -1,6 +1,7 @@
 #include "contact_problem.hpp"
 
 #include "vibrissa/solve/solvers.hpp"
+#include "vibrissa/solve/whisker_frame_signals.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -104,13 +105,7 @@ void fill_solution(const Whisker& w, const Placement& X, const LoadState& state,
   out.contact_point_W = X.to_world(p_B);
   out.force_W = X.R_WB * F_B;
   out.moment_W = X.R_WB * M_B;
-  auto& wf = out.whisker_frame;
-  wf.force = F_B;
-  wf.moment = M_B;
-  wf.FT = std::hypot(F_B.y(), F_B.z());
-  wf.MB = std::hypot(M_B.y(), M_B.z());
-  wf.FD = std::atan2(F_B.z(), F_B.y());
-  wf.MD = std::atan2(M_B.z(), M_B.y());
+  out.whisker_frame = whisker_frame_signals(F_B, M_B);
   if (edge_direction_W) {
     const Eigen::Vector3d d = edge_direction_W->normalized();
     out.edge_force = out.force_W.dot(d);

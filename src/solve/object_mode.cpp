@@ -11,6 +11,7 @@
 #include "two_contact.hpp"
 #include "vibrissa/objects/clearance.hpp"
 #include "vibrissa/solve/solvers.hpp"
+#include "vibrissa/solve/whisker_frame_signals.hpp"
 
 namespace vibrissa {
 
@@ -512,13 +513,7 @@ void two_contact_solution(const Whisker& w, const Placement& X, const TwoContact
   out.force_magnitude = F_B.norm();
   out.force_W = X.R_WB * F_B;
   out.moment_W = X.R_WB * M_B;
-  auto& wf = out.whisker_frame;
-  wf.force = F_B;
-  wf.moment = M_B;
-  wf.FT = std::hypot(F_B.y(), F_B.z());
-  wf.MB = std::hypot(M_B.y(), M_B.z());
-  wf.FD = std::atan2(F_B.z(), F_B.y());
-  wf.MD = std::atan2(M_B.z(), M_B.y());
+  out.whisker_frame = whisker_frame_signals(F_B, M_B);
   out.contact_point_W = X.to_world(two.point_B[0]);
   out.normal_force = k.F_B[0].dot(two.normal_B[0]);
   out.residual = two.residual;
