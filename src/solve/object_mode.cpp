@@ -2,6 +2,7 @@
 // tip, with the statuses of edge mode and second_contact. The equations are object_problem.hpp's.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -600,13 +601,19 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
     sc.clearance_arc_length = c.gap < 0.0 ? c.arc_length : a.state.arc_length;
     if (c.gap < -second_contact_depth && two_contact_rounds > 0) {
       const TwoContacts two = solve_two_contacts(w, Scales(w), g, a, c.arc_length, options);
-      if (two.solved && two.single >= 0) {  // one of the two pulls: the single contact at the other place
+      // The single contact of `attempt` (on `geometry`, side `sigma`) instead, when it converges.
+      const auto single_contact = [&](const ObjectAttempt& attempt, const ObjectGeometryB& geometry,
+                                      double side) -> std::optional<Solution> {
         ObjectOutcome single = o;
-        single.attempt = two.single_attempt;
+        single.attempt = attempt;
         single.attempt.lm.iterations += a.lm.iterations + two.iterations;
-        single.sigma = 1.0;
-        Solution s = object_solution(w, X, object, g, single, options, approach_W, two_contact_rounds - 1);
+        single.sigma = side;
+        Solution s = object_solution(w, X, object, geometry, single, options, approach_W, two_contact_rounds - 1);
         if (s.status == Status::converged) return s;
+        return std::nullopt;
+      };
+      if (two.solved && two.single >= 0) {  // one of the two pulls: the single contact at the other place
+        if (auto s = single_contact(two.single_attempt, g, 1.0)) return *s;
       } else if (two.solved) {
         out.surface = sc;
         two_contact_solution(w, X, two, out);
@@ -629,14 +636,8 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
           b = attempt_object(w, scales, g, FrictionLaw{}, sigma, false, from.lm.u, options);
         if (b.status == Status::not_converged && g.shape->needs_thickness())
           b = attempt_by_bracketing(w, scales, g, FrictionLaw{}, sigma, from, options);
-        if (b.status == Status::converged && valid_contact(w, g, b, sigma)) {
-          ObjectOutcome single = o;
-          single.attempt = b;
-          single.attempt.lm.iterations += a.lm.iterations + two.iterations;
-          single.sigma = sigma;
-          Solution s = object_solution(w, X, object, g, single, options, approach_W, two_contact_rounds - 1);
-          if (s.status == Status::converged) return s;
-        }
+        if (b.status == Status::converged && valid_contact(w, g, b, sigma))
+          if (auto s = single_contact(b, g, sigma)) return *s;
         if (g.shape->needs_thickness()) {
           // The whisker enters beside its contact across a crease (on the same link: its chord passes over the
           // crease, which the load point's own feature does not see): the contact held on that crease, an edge
@@ -657,12 +658,7 @@ Solution object_solution(const Whisker& w, const Placement& X, const ObjectConta
             for (const Eigen::Vector3d& u : {a.lm.u, from.lm.u}) {
               ObjectAttempt h = attempt_object(w, scales, held, FrictionLaw{}, held_sigma, false, u, options);
               if (h.status != Status::converged || !valid_contact(w, held, h, held_sigma)) continue;
-              ObjectOutcome single = o;
-              single.attempt = h;
-              single.attempt.lm.iterations += a.lm.iterations + two.iterations;
-              single.sigma = held_sigma;
-              Solution s = object_solution(w, X, object, held, single, options, approach_W, two_contact_rounds - 1);
-              if (s.status == Status::converged) return s;
+              if (auto s = single_contact(h, held, held_sigma)) return *s;
             }
           }
         }
