@@ -30,16 +30,7 @@ Pose pose_at(int i) {
   p.zeta = 20.0 * deg;
   return p;
 }
-/// A 30 mm whisker y = 8 x^2 (B frame), 25 points.
-std::vector<Eigen::Vector3d> whisker_points(const Pose& pose) {
-  const Placement X(pose);
-  std::vector<Eigen::Vector3d> p;
-  for (int i = 0; i < 25; ++i) {
-    const double x = 0.03 * i / 24.0;
-    p.push_back(X.to_world(Eigen::Vector3d(x, 8.0 * x * x, 0.0)));
-  }
-  return p;
-}
+using test_support::whisker_points;
 
 struct Views {
   Tracks2D top, front;

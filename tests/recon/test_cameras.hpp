@@ -29,7 +29,18 @@ inline Camera front_test_camera(double k1 = 0.0, double k2 = 0.0) {
   return pinhole_camera(K, R, -R * C, k1, k2);
 }
 
-/// Frame i of a whisking 30 mm whisker y = 8 x^2 (B frame) whose base moves with the pad, 25 points (world).
+/// A 30 mm whisker y = 8 x^2 (B frame) placed at `pose`, 25 points (world).
+inline std::vector<Eigen::Vector3d> whisker_points(const Pose& pose) {
+  const Placement X(pose);
+  std::vector<Eigen::Vector3d> pts;
+  for (int k = 0; k < 25; ++k) {
+    const double x = 0.03 * k / 24.0;
+    pts.push_back(X.to_world(Eigen::Vector3d(x, 8.0 * x * x, 0.0)));
+  }
+  return pts;
+}
+
+/// Frame i of that whisker whisking, its base moving with the pad (world).
 inline std::vector<Eigen::Vector3d> whisker_at(int i) {
   constexpr double deg = std::numbers::pi / 180.0;
   Pose p;
@@ -37,13 +48,7 @@ inline std::vector<Eigen::Vector3d> whisker_at(int i) {
   p.theta = (10.0 + 25.0 * std::sin(0.12 * i)) * deg;
   p.phi = 10.0 * deg;
   p.zeta = 20.0 * deg;
-  const Placement X(p);
-  std::vector<Eigen::Vector3d> pts;
-  for (int k = 0; k < 25; ++k) {
-    const double x = 0.03 * k / 24.0;
-    pts.push_back(X.to_world(Eigen::Vector3d(x, 8.0 * x * x, 0.0)));
-  }
-  return pts;
+  return whisker_points(p);
 }
 
 }  // namespace vibrissa::recon::test_support
