@@ -29,8 +29,10 @@ default peg at (20, -8, -3) mm), 1 s at 1 kHz:
                whisking frequency's first 10 harmonics over 0.25-1 s (the steady whisk; what is left over is the
                jitter of its sampled constraint force), and Newton's law on its own links (sum of m a and of the
                moments of m a, from finite differences of its saved link positions and its link masses); vibrissa
-               with its defaults and "matched" (WHISKiT's 20 links, E, radii and mass); the tips' lag behind the
-               rigidly turned rest shape; Newton's law on vibrissa's matched run; the harmonics at f and 2 f.
+               with its defaults and "matched" (WHISKiT's 20 links, E, radii and mass; also with WHISKiT's damping
+               ratio, with E / 20 as its E I / L joint stiffness would give, and with E scaled so that it lags as
+               WHISKiT does); the tips' lag behind the rigidly turned rest shape; Newton's law on vibrissa's matched
+               run; the harmonics at f and 2 f.
                Units: WHISKiT works in mm and kg, so its force is in mN and its moment in uN m (both world axes,
                on its follicle body, about the base point).
 
@@ -437,16 +439,29 @@ def cmd_air(args) -> int:
                     {"links": LINKS, "radii": radii.tolist(), "youngs_modulus": WHISKIT_E_PA}, {"density": density}),
                 "vibrissa, matched, zeta 0.32 (WHISKiT's)": (
                     {"links": LINKS, "radii": radii.tolist(), "youngs_modulus": WHISKIT_E_PA},
-                    {"density": density, "damping_ratio": 0.32})}
-        fits = {}
-        for label, (fields, settings) in runs.items():
+                    {"density": density, "damping_ratio": 0.32}),
+                "vibrissa, matched, E 5/20 GPa (springs E I / L)": (
+                    {"links": LINKS, "radii": radii.tolist(), "youngs_modulus": WHISKIT_E_PA / LINKS},
+                    {"density": density})}
+        fits, matched = {}, "vibrissa, matched (N 20, 5 GPa, its radii, mass)"
+        steady = time >= STEADY_FROM_S - 1e-9
+        whiskit_lag = float(np.linalg.norm(tip_lag[1:][steady], axis=-1).max())
+        for label, (fields, settings) in list(runs.items()) + [("fitted E", (None, None))]:
+            if settings is None:   # the modulus at which vibrissa matched lags as WHISKiT (lag ~ 1/E below f_1)
+                r = matched_result
+                lag = float(np.linalg.norm(np.stack([r.tip_x_B, r.tip_y_B, r.tip_z_B], -1)[r.time >= STEADY_FROM_S
+                                                                                          - 1e-9], axis=-1).max())
+                modulus = WHISKIT_E_PA * lag / whiskit_lag
+                label = f"vibrissa, matched, E {modulus / 1e9:.2f} GPa (its lag as WHISKiT's)"
+                fields = {"links": LINKS, "radii": radii.tolist(), "youngs_modulus": modulus}
+                settings = {"density": density}
             whisker, whisking, _, _ = array_whisker_case(name, 1e-3, 0.0, kinematics, **fields)
             r = vibrissa.simulate_dynamics(whisker, DURATION_S, 1.0 / STEP_S, whisking=whisking, **settings)
             F = np.stack([r.Fx_W, r.Fy_W, r.Fz_W], -1)
             M = np.stack([r.Mx_W, r.My_W, r.Mz_W], -1)
             fits[label] = peaks(label, r.time, F, M, np.stack([r.tip_x_B, r.tip_y_B, r.tip_z_B], -1))
-            if "matched" in label and "zeta" not in label:
-                matched, matched_result = label, r
+            if label == matched:
+                matched_result = r
         for what, k in (("force", 1), ("moment", 2)):
             ratio, correlation = compare_fits(w_fit, fits[matched], k)
             own_ratio, own_correlation = compare_fits(own, fits[matched], k)
