@@ -37,7 +37,7 @@ default peg at (20, -8, -3) mm), 1 s at 1 kHz:
                on its follicle body, about the base point).
 
 Usage: /usr/bin/python3 bench/whiskit_compare.py inputs /tmp/whiskit_inputs --whiskit-data PATH/code/data
-       /usr/bin/python3 bench/whiskit_compare.py ours [--vibrissa build/bin/vibrissa] [--threads 1] [--links N]
+       /usr/bin/python3 bench/whiskit_compare.py ours [--vibrissa build/bin/vibrissa] [--threads 1] [--links N] [--mu M]
        /usr/bin/python3 bench/whiskit_compare.py peg-whisker C1R [--duration 1] [--mu 0.25] [--peg-radius-mm 1]
        /usr/bin/python3 bench/whiskit_compare.py air A0R B0R C0R C1R D0R [--whiskit-output DIR] [--inputs DIR]
 (PYTHONPATH=build/python for all but `ours`.)"""
@@ -67,9 +67,10 @@ WHISKIT_HEAD_POSITION_MM = (0.0, 7.0, -4.0)
 PHASE_DEG = 60.0
 
 
-def scene(frames: int, end_s: float, peg: bool = True, links: int = 0) -> dict:
+def scene(frames: int, end_s: float, peg: bool = True, links: int = 0, mu: float = 0.0) -> dict:
     """The comparison's `vibrissa array` config: the default scene over `frames` frames to `end_s` (links > 0:
-    that many links per whisker instead of the default 100)."""
+    that many links per whisker instead of the default 100; mu > 0: the peg with that friction, the array's
+    frictional edge mode; else frictionless)."""
     import vibrissa
     config = vibrissa.default_array_config()
     config["time"] = {"start_s": 0.0, "end_s": end_s, "frames": frames}
@@ -79,6 +80,9 @@ def scene(frames: int, end_s: float, peg: bool = True, links: int = 0) -> dict:
     config["output"] = {"render_count": 1}
     if links > 0:
         config["solver"]["links"] = links
+    config["solver"]["mode"] = "frictional_edge" if mu > 0.0 else "edge"
+    if mu > 0.0:
+        config["solver"]["mu"] = mu
     return config
 
 
@@ -208,7 +212,7 @@ def cmd_ours(args) -> int:
     frames = int(round(DURATION_S / STEP_S)) + 1
     with tempfile.TemporaryDirectory() as tmp:
         config = pathlib.Path(tmp) / "scene.json"
-        config.write_text(json.dumps(scene(frames, DURATION_S, peg=True, links=args.links)))
+        config.write_text(json.dumps(scene(frames, DURATION_S, peg=True, links=args.links, mu=args.mu)))
         command = [args.vibrissa, "array", str(config), "--dynamics", "--no-figures", "--threads",
                    str(args.threads), "--out", str(pathlib.Path(tmp) / "out")]
         load = os.getloadavg()[0]
@@ -223,7 +227,7 @@ def cmd_ours(args) -> int:
         summary = json.loads((pathlib.Path(tmp) / "out" / "summary.json").read_text())
     user, system = float(times["User time (seconds)"]), float(times["System time (seconds)"])
     print(" ".join(command[:2]) + " SCENE.json " + " ".join(command[3:-2]))
-    print(f"31 whiskers x {DURATION_S:g} s, N = {args.links or 100}, {frames} frames: CPU {user + system:.2f} s (user {user:.2f}, "
+    print(f"31 whiskers x {DURATION_S:g} s, N = {args.links or 100}, mu {args.mu:g}, {frames} frames: CPU {user + system:.2f} s (user {user:.2f}, "
           f"sys {system:.2f}), wall {times['Elapsed (wall clock) time (h:mm:ss or m:ss)']}, "
           f"load average {load:.1f} -> {os.getloadavg()[0]:.1f}")
     print("dynamics:", json.dumps(summary.get("dynamics", {}))[:400])
@@ -497,6 +501,7 @@ def main() -> int:
     p.add_argument("--vibrissa", default="build/bin/vibrissa")
     p.add_argument("--threads", type=int, default=1)
     p.add_argument("--links", type=int, default=0, help="links per whisker (default: the config's, 100)")
+    p.add_argument("--mu", type=float, default=0.0, help="the peg's friction (WHISKiT's: 0.25); 0: frictionless")
     p = sub.add_parser("peg-whisker")
     p.add_argument("name", help="a whisker of the array, e.g. C1R, or 'all': every whisker, one after the other")
     p.add_argument("--duration", type=float, default=DURATION_S)

@@ -15,8 +15,8 @@
 // stage's f of the step before). The two implicit stages share the diagonal coefficient d, so their Newton matrices
 // are the same: each is solved by Newton's method on the stage's modal rates; the contacts make the Newton matrix
 // diag + a rank-3 term per contact (Woodbury). Error control (step_control.hpp) by the embedded third-order
-// estimate, filtered through the Newton matrix (stiff components count by their damped response). With friction
-// on any object: Alexander's two-stage SDIRK (same order, all stages implicit) with step doubling (run()).
+// estimate, filtered through the Newton matrix (stiff components count by their damped response). Where a contact
+// flickers: Alexander's two-stage SDIRK (same order, all stages implicit) with step doubling (run()).
 #include "nonlinear_simulate.hpp"
 #include "step_control.hpp"
 
@@ -41,8 +41,8 @@ namespace {
 // embedded third-order weights b^ = ((1 - w) / 3, (3w + 1) / 3, d / 3).
 const double d_trbdf2 = 1.0 - 1.0 / std::sqrt(2.0);
 const double w_trbdf2 = std::sqrt(2.0) / 4.0;
-// With friction: Alexander's two-stage SDIRK (gamma = 1 - 1/sqrt 2; L-stable, stiffly accurate, order 2), step
-// doubling (see step_sdirk2).
+// Where a contact flickers: Alexander's two-stage SDIRK (gamma = 1 - 1/sqrt 2; L-stable, stiffly accurate,
+// order 2), step doubling (see step_sdirk2).
 const double gamma_sdirk2 = 1.0 - 1.0 / std::sqrt(2.0);
 
 /// One contact's evaluation at a stage.
@@ -333,7 +333,7 @@ class Integrator {
     return false;
   }
 
-  /// One step of Alexander's SDIRK2 of length h from (t, y) (the objects have friction: see run()).
+  /// One step of Alexander's SDIRK2 of length h from (t, y) (a contact flickers: see run()).
   bool step_sdirk2(double t, double h, const State& y, double tol, State& out) {
     const double g = gamma_sdirk2 * h;
     State Y1;
@@ -431,17 +431,15 @@ class Integrator {
     record(ts, 0, 0.0, y);
 
     double scale = energy_norm(y.eta, y.rate);
-    // Frictionless: TR-BDF2 with its embedded estimate. With friction: SDIRK2 with step doubling (each step also
-    // taken as two halves, which are kept; their difference / 3 estimates their error), three times the stage
-    // solves: at the slip -> stick transition TR-BDF2's explicit first stage flips the elastic-plastic state back
-    // and forth (docs/dynamics.md, "Integrator").
-    // A contact that flickers (touch and release again and again within a millisecond, as where a frictionless
-    // contact grazes the short, light links near the tip: TR-BDF2's trapezoidal stage leaves an alternating
-    // response in that very stiff contact) switches to SDIRK2, which passes it as one release, until no object
-    // has been touched for a millisecond (bench_dynamics' peg: 3,509 events with TR-BDF2 alone, 21 with SDIRK2).
-    const bool friction = std::any_of(objects_.begin(), objects_.end(),
-                                      [](const LineObstacle& o) { return o.friction_coefficient > 0.0; });
-    bool sdirk2 = friction, step_sdirk2_used = friction;
+    // TR-BDF2 with its embedded estimate. A contact that flickers (six touches, releases, slip onsets or sticks
+    // within a millisecond: a frictionless contact grazing the short, light links near the tip, where TR-BDF2's
+    // trapezoidal stage leaves an alternating response in that very stiff contact; a frictional one at a slip ->
+    // stick transition, where the elastic-plastic state decided on the explicit first stage's side flips back and
+    // forth) switches to SDIRK2 with step doubling (each step also taken as two halves, which are kept; their
+    // difference / 3 estimates their error), which passes it as one transition, until no object has been touched
+    // for a millisecond (bench_dynamics' peg: 3,509 events with TR-BDF2 alone, 21 with SDIRK2; docs/dynamics.md,
+    // "Integrator").
+    bool sdirk2 = false, step_sdirk2_used = false;
     constexpr std::size_t flicker_events = 6;
     constexpr double flicker_window = 1e-3;  // [s]
     double last_touched = 0.0;
@@ -475,7 +473,7 @@ class Integrator {
           if (std::any_of(next.contacts.begin(), next.contacts.end(),
                           [](const ContactValue& c) { return c.state != ContactState::none; }))
             last_touched = t + h;
-          else if (sdirk2 && !friction && t + h - last_touched > flicker_window)
+          else if (sdirk2 && t + h - last_touched > flicker_window)
             sdirk2 = false;
           y = next;
           scale = std::max(scale, energy_norm(y.eta, y.rate));
@@ -517,10 +515,13 @@ class Integrator {
         ts.events.push_back(event(crossing(), ContactEventType::release, o, p));
       }
       if (objects_[o].friction_coefficient > 0.0 && is) {
-        if (c.state == ContactState::slip && p.state != ContactState::slip)
+        if (c.state == ContactState::slip && p.state != ContactState::slip) {
+          transitions_.push_back(t0 + h);
           ts.events.push_back(event(t0 + h, ContactEventType::slip, o, c));
-        else if (c.state == ContactState::stick && p.state == ContactState::slip)
+        } else if (c.state == ContactState::stick && p.state == ContactState::slip) {
+          transitions_.push_back(t0 + h);
           ts.events.push_back(event(t0 + h, ContactEventType::stick, o, c));
+        }
       }
     }
   }
