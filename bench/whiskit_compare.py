@@ -35,11 +35,17 @@ default peg at (20, -8, -3) mm), 1 s at 1 kHz:
                run; the harmonics at f and 2 f.
                Units: WHISKiT works in mm and kg, so its force is in mN and its moment in uN m (both world axes,
                on its follicle body, about the base point).
+  air-steady NAME...
+               the same for a WHISKiT run on `inputs DIR --steady-rate R` (every follicle turned at a constant R
+               rad/s about its first step's axis): its saved force against Newton on its links over 0-10, 10-30,
+               30-60 ms and the rest (the scatter of its saved force without the whisk's 1 ms steps).
 
 Usage: /usr/bin/python3 bench/whiskit_compare.py inputs /tmp/whiskit_inputs --whiskit-data PATH/code/data
        /usr/bin/python3 bench/whiskit_compare.py ours [--vibrissa build/bin/vibrissa] [--threads 1] [--links N] [--mu M]
        /usr/bin/python3 bench/whiskit_compare.py peg-whisker C1R [--duration 1] [--mu 0.25] [--peg-radius-mm 1]
        /usr/bin/python3 bench/whiskit_compare.py air A0R B0R C0R C1R D0R [--whiskit-output DIR] [--inputs DIR]
+       /usr/bin/python3 bench/whiskit_compare.py inputs /tmp/steady --steady-rate 5   # then WHISKiT --OBJECT 0
+       /usr/bin/python3 bench/whiskit_compare.py air-steady C1R --whiskit-output DIR --inputs /tmp/steady
 (PYTHONPATH=build/python for all but `ours`.)"""
 import argparse
 import json
@@ -198,6 +204,9 @@ def cmd_inputs(args) -> int:
     write_csv(data / "whisking_init_angle.csv", np.stack([theta[:, 0], phi[:, 0], zeta[:, 0]], -1))
     # angular velocity over step k (k = 1..steps): the rotation from frame k-1 to frame k, world frame, / step
     omega = rotation_vector(R[:, 1:] @ np.swapaxes(R[:, :-1], -1, -2)) / STEP_S   # (whiskers, steps, 3)
+    if args.steady_rate is not None:   # a steady rotation instead: the first step's axis at a constant rate
+        axis = omega[:, :1] / np.linalg.norm(omega[:, :1], axis=-1, keepdims=True)
+        omega = np.broadcast_to(axis * args.steady_rate, omega.shape)
     write_csv(data / "whisking_trajectory.csv", omega.reshape(len(names), -1))
     print(f"wrote {data} ({steps} steps of {STEP_S * 1e3:g} ms); peak |omega| {np.abs(omega).max():.3g} rad/s")
     position = " ".join(f"{v:g}" for v in WHISKIT_HEAD_POSITION_MM)
@@ -491,12 +500,39 @@ def cmd_air(args) -> int:
     return 0
 
 
+def cmd_air_steady(args) -> int:
+    """WHISKiT's saved force against Newton on its links, window by window, for a run on `inputs --steady-rate`."""
+    output, inputs = pathlib.Path(args.whiskit_output), pathlib.Path(args.inputs)
+    params = inputs / "data" / "whisker_param_average_rat"
+    whiskit_names = [line.strip() for line in open(params / "param_name.csv")]
+    row_col = np.genfromtxt(params / "param_side_row_col.csv", delimiter=",").astype(int)
+    s_a = np.genfromtxt(params / "param_s_a.csv", delimiter=",")
+    for name in args.names:
+        wname = "R" + name[:-1]
+        i = whiskit_names.index(wname)
+        _, mass = whiskit_links(int(row_col[i, 1]), int(row_col[i, 2]), float(s_a[i, 0]))
+        time, force, _, points = read_whiskit_air(output, wname)
+        newton, _ = newton_wrench(points[:, 1:], mass, points[:, 0], STEP_S)
+        newton_time = np.arange(len(points))[2:-2] * STEP_S
+        edges = [0.0, 0.01, 0.03, 0.06, time[-1] + STEP_S]
+        for lo, hi in zip(edges[:-1], edges[1:]):
+            saved = np.linalg.norm(force[(time >= lo) & (time < hi)], axis=-1)
+            own = np.linalg.norm(newton[(newton_time >= lo) & (newton_time < hi)], axis=-1)
+            print(f"{name} {lo * 1e3:4.0f}-{hi * 1e3:4.0f} ms: saved |F| mean {saved.mean() * 1e6:6.2f} max "
+                  f"{saved.max() * 1e6:6.2f} uN; Newton on its links mean {own.mean() * 1e6:6.2f} max "
+                  f"{own.max() * 1e6:6.2f} uN")
+    return 0
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("inputs")
     p.add_argument("dir")
     p.add_argument("--whiskit-data", default="/work/whiskit/code/data")
+    p.add_argument("--steady-rate", type=float, help="turn every follicle at this constant rate [rad/s] about its "
+                   "first step's axis instead of whisking (the scatter of WHISKiT's saved force without the whisk's "
+                   "1 ms angular-velocity steps: `air-steady`)")
     p = sub.add_parser("ours")
     p.add_argument("--vibrissa", default="build/bin/vibrissa")
     p.add_argument("--threads", type=int, default=1)
@@ -511,9 +547,13 @@ def main() -> int:
     p.add_argument("names", nargs="+", help="whiskers of the array, e.g. C1R")
     p.add_argument("--whiskit-output", default=WHISKIT_OUTPUT, help="WHISKiT's --dir_out of its in-air run")
     p.add_argument("--inputs", default=WHISKIT_INPUTS, help="the folder `inputs` wrote (its data/ is read)")
+    p = sub.add_parser("air-steady")
+    p.add_argument("names", nargs="+", help="whiskers of the array, e.g. C1R")
+    p.add_argument("--whiskit-output", required=True, help="WHISKiT's --dir_out of a run on `inputs --steady-rate`")
+    p.add_argument("--inputs", required=True, help="the folder `inputs --steady-rate` wrote")
     args = parser.parse_args()
     return {"inputs": cmd_inputs, "ours": cmd_ours, "peg-whisker": cmd_peg_whisker,
-            "air": cmd_air}[args.command](args)
+            "air": cmd_air, "air-steady": cmd_air_steady}[args.command](args)
 
 
 if __name__ == "__main__":
