@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <unordered_map>
@@ -161,8 +163,11 @@ Mesh::~Mesh() = default;
 
 SurfacePoint Mesh::nearest(const Eigen::Vector3d& p) const {
   const auto hit = tree_->tree.closest_point_and_primitive(Tree::K::Point_3(p.x(), p.y(), p.z()));
-  const Eigen::Vector3d q(hit.first.x(), hit.first.y(), hit.first.z());
-  const auto f = static_cast<std::size_t>(hit.second - tree_->triangles.cbegin());
+  return on_triangle(p, Eigen::Vector3d(hit.first.x(), hit.first.y(), hit.first.z()),
+                     static_cast<std::size_t>(hit.second - tree_->triangles.cbegin()));
+}
+
+SurfacePoint Mesh::on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::size_t f) const {
   const auto& tri = triangles_[f];
   const Eigen::Vector3d &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
   // Barycentric coordinates of q: which feature of the triangle holds it.
@@ -182,6 +187,115 @@ SurfacePoint Mesh::nearest(const Eigen::Vector3d& p) const {
   }
   const int code = zeros == 0 ? 0 : zeros == 1 ? 1 + zero : 4 + nonzero;
   return feature_point(p, q, f, code);
+}
+
+// A solve's queries gather about its contact: the triangles near it, gathered once from the tree (a box query),
+// answer them with a loop over a few dozen; a query whose nearest candidate is farther than the box's boundary
+// (a triangle outside the box might be nearer) goes to the tree. Every answer is the nearest triangle's, as the
+// tree's; among triangles at the same distance (a shared edge or vertex, the same feature and normal) the
+// candidates take the first in the mesh's order, the tree the first it visits: feature_id may name the other
+// triangle of the same edge.
+class Mesh::Neighbourhood final : public Shape {
+ public:
+  Neighbourhood(const Mesh& mesh, double margin) : Shape("mesh"), mesh_(mesh), margin_(margin) {}
+  [[nodiscard]] SurfacePoint nearest(const Eigen::Vector3d& p) const override {
+    if (asked_ && p == last_p_) return last_;  // the clearance checks ask at the same nodes again
+    last_ = answer(p);
+    last_p_ = p;
+    asked_ = true;
+    return last_;
+  }
+  [[nodiscard]] SurfacePoint nearest_on_feature(const Eigen::Vector3d& p, std::int64_t feature_id) const override {
+    return mesh_.nearest_on_feature(p, feature_id);
+  }
+  [[nodiscard]] Bounds bounds() const override { return mesh_.bounds(); }
+  [[nodiscard]] bool needs_thickness() const override { return true; }
+  [[nodiscard]] ShapeDescription describe() const override { return mesh_.describe(); }
+
+ private:
+  struct Candidate {
+    Eigen::Vector3d centre;  // of a sphere holding the triangle
+    double radius;
+    std::size_t f;
+  };
+
+  [[nodiscard]] SurfacePoint from_tree(const Eigen::Vector3d& p, double& distance) const {
+    const auto hit = mesh_.tree_->tree.closest_point_and_primitive(Tree::K::Point_3(p.x(), p.y(), p.z()));
+    const Eigen::Vector3d q(hit.first.x(), hit.first.y(), hit.first.z());
+    distance = (p - q).norm();
+    return mesh_.on_triangle(p, q, static_cast<std::size_t>(hit.second - mesh_.tree_->triangles.cbegin()));
+  }
+
+  /// The box [p - h, p + h] (h: the distance to the surface and the margin) and the triangles meeting it.
+  void gather(const Eigen::Vector3d& p, double distance) const {
+    const double h = distance + margin_;
+    lower_ = p.array() - h;
+    upper_ = p.array() + h;
+    std::vector<Tree::Triangles::const_iterator> hits;
+    mesh_.tree_->tree.all_intersected_primitives(
+        CGAL::Bbox_3(lower_.x(), lower_.y(), lower_.z(), upper_.x(), upper_.y(), upper_.z()), std::back_inserter(hits));
+    candidates_.clear();
+    for (const auto& it : hits) {
+      const auto f = static_cast<std::size_t>(it - mesh_.tree_->triangles.cbegin());
+      const auto& tri = mesh_.triangles_[f];
+      const Eigen::Vector3d centre = (mesh_.vertices_[tri[0]] + mesh_.vertices_[tri[1]] + mesh_.vertices_[tri[2]]) / 3.0;
+      double radius = 0.0;
+      for (int k : tri) radius = std::max(radius, (mesh_.vertices_[k] - centre).norm());
+      candidates_.push_back({centre, radius * (1.0 + 1e-12), f});
+    }
+    std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) { return a.f < b.f; });
+    gathered_ = true;
+  }
+
+  [[nodiscard]] SurfacePoint answer(const Eigen::Vector3d& p) const {
+    double distance = 0.0;
+    if (!gathered_) {
+      SurfacePoint q = from_tree(p, distance);
+      if (distance <= margin_) gather(p, distance);
+      return q;
+    }
+    // How far p is inside the box: no triangle outside it is nearer than that.
+    const double room = std::min((p - lower_).minCoeff(), (upper_ - p).minCoeff());
+    if (!(room > 0.0)) return from_tree(p, distance);
+    const Tree::K::Point_3 point(p.x(), p.y(), p.z());
+    const Tree::K::Construct_projected_point_3 project;
+    double best2 = std::numeric_limits<double>::infinity(), best = best2;
+    std::size_t best_f = 0;
+    Tree::K::Point_3 best_q;
+    auto consider = [&](const Candidate& c) {
+      const double reach = best + c.radius;
+      if ((p - c.centre).squaredNorm() > reach * reach) return;
+      const Tree::K::Point_3 q = project(mesh_.tree_->triangles[c.f], point);
+      const double d2 = CGAL::squared_distance(point, q);
+      if (d2 < best2 || (d2 == best2 && c.f < best_f)) {
+        best2 = d2;
+        best = std::sqrt(d2);
+        best_f = c.f;
+        best_q = q;
+      }
+    };
+    if (hint_ < candidates_.size()) consider(candidates_[hint_]);  // usually the nearest: the rest is culled
+    for (const Candidate& c : candidates_) consider(c);
+    if (!(best <= room)) return from_tree(p, distance);
+    const auto at = std::lower_bound(candidates_.begin(), candidates_.end(), best_f,
+                                     [](const Candidate& c, std::size_t f) { return c.f < f; });
+    hint_ = static_cast<std::size_t>(at - candidates_.begin());
+    return mesh_.on_triangle(p, Eigen::Vector3d(best_q.x(), best_q.y(), best_q.z()), best_f);
+  }
+
+  const Mesh& mesh_;
+  double margin_;
+  mutable bool gathered_ = false;
+  mutable Eigen::Vector3d lower_ = Eigen::Vector3d::Zero(), upper_ = Eigen::Vector3d::Zero();
+  mutable std::vector<Candidate> candidates_;
+  mutable std::size_t hint_ = 0;
+  mutable bool asked_ = false;
+  mutable Eigen::Vector3d last_p_ = Eigen::Vector3d::Zero();
+  mutable SurfacePoint last_;
+};
+
+std::unique_ptr<const Shape> Mesh::local_view(double margin) const {
+  return std::make_unique<Neighbourhood>(*this, margin);
 }
 
 SurfacePoint Mesh::feature_point(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::size_t f, int code) const {
