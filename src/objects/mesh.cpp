@@ -191,7 +191,8 @@ SurfacePoint Mesh::on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& 
 }
 
 // A solve's queries gather about its contacts: the triangles near each place, gathered once from the tree (a box
-// query about the first point asked there near the surface), answer them with a loop over about a hundred; a query
+// query about the first point asked there within the margin of the surface, reaching twice the margin farther),
+// answer them with a loop over about a hundred; a query
 // whose nearest candidate is farther than its box's boundary (a triangle outside the box might be nearer) goes to
 // the tree. Every answer is the nearest triangle's, as the tree's; among triangles at the same distance (a shared
 // edge or vertex: the same feature and normal) the candidates take the first in the mesh's order, the tree the
@@ -235,10 +236,10 @@ class Mesh::Neighbourhood final : public Shape {
     return mesh_.on_triangle(p, q, static_cast<std::size_t>(hit.second - mesh_.tree_->triangles.cbegin()));
   }
 
-  /// The box [p - h, p + h] (h: p's distance to the surface and the margin) and the triangles meeting it.
+  /// The box [p - h, p + h] (h: p's distance to the surface and twice the margin) and the triangles meeting it.
   void gather(const Eigen::Vector3d& p, double distance) const {
     Region r;
-    const double h = distance + margin_;
+    const double h = distance + 2.0 * margin_;
     r.lower = p.array() - h;
     r.upper = p.array() + h;
     std::vector<Tree::Triangles::const_iterator> hits;

@@ -685,9 +685,9 @@ Solution solve_object(const Whisker& w, const Placement& X, const ObjectContact&
   if (hint) require_finite(*hint, "load.arc_length_hint");
   if (approach_W) require_finite(*approach_W, "load.approach");
   const detail::Scales sc(w);
-  // A mesh answers this solve's queries from its triangles about the contact (Shape::local_view), within a link's
-  // length of the first point asked near its surface: the same answers as its tree's.
-  const std::unique_ptr<const Shape> view = object.shape->local_view(w.length() / w.links());
+  // A mesh answers this solve's queries from its triangles about the contact (Shape::local_view: about each place
+  // asked within a quarter of a link of its surface): the same answers as its tree's.
+  const std::unique_ptr<const Shape> view = object.shape->local_view(0.25 * w.length() / w.links());
   ObjectContact local = object;
   if (view) local.shape = view.get();
   const detail::ObjectGeometryB g = detail::object_in_body(X, local);

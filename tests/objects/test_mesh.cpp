@@ -88,7 +88,7 @@ TEST(Mesh, ALocalViewAnswersAsTheTree) {
   // A solve's view (Shape::local_view): queries wandering about a contact, near the surface, inside and up to
   // 2 mm away (beyond the gathered triangles: those go to the tree), some asked twice. Every answer is the tree's.
   const Mesh ball(tessellated_sphere(Eigen::Vector3d::Zero(), 0.003, 5));
-  const std::unique_ptr<const Shape> view = ball.local_view(0.0004);
+  const std::unique_ptr<const Shape> view = ball.local_view(0.0001);
   ASSERT_NE(view, nullptr);
   EXPECT_EQ(view->type(), "mesh");
   std::mt19937_64 rng(3);

@@ -38,8 +38,9 @@ class Mesh final : public Shape {
   [[nodiscard]] Bounds bounds() const override { return bounds_; }
   [[nodiscard]] bool needs_thickness() const override { return true; }
   [[nodiscard]] ShapeDescription describe() const override;
-  /// The triangles within about `margin` of the first query near the surface (one search of the tree), each later
-  /// query answered from them where none of the others can be nearer (else from the tree): the same answers.
+  /// About each place the solve asks within `margin` of the surface (up to 16), the triangles within about three
+  /// margins (one search of the tree); each later query answered from them where none of the others can be nearer,
+  /// else from the tree: the same answers.
   [[nodiscard]] std::unique_ptr<const Shape> local_view(double margin) const override;
 
   [[nodiscard]] const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }

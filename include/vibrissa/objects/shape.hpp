@@ -99,8 +99,8 @@ class Shape {
   [[nodiscard]] virtual double signed_distance(const Eigen::Vector3d& p) const { return nearest(p).signed_distance; }
   [[nodiscard]] virtual Bounds bounds() const = 0;
   /// A view of this shape for one solve's queries, which gather about one place (the contact): it answers every
-  /// query as this shape does, faster there (a mesh: from the triangles its tree finds about the first point asked
-  /// near the surface, within `margin` [m] of it; docs/objects.md, "Speed"). It keeps state between queries: one
+  /// query as this shape does, faster there (a mesh: from the triangles its tree finds about each place asked within
+  /// `margin` [m] of the surface; docs/objects.md, "Speed"). It keeps state between queries: one
   /// view per solve and thread. nullptr: the shape's own queries are as fast.
   [[nodiscard]] virtual std::unique_ptr<const Shape> local_view(double margin) const {
     (void)margin;
