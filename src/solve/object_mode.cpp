@@ -2,6 +2,7 @@
 // tip, with the statuses of edge mode and second_contact. The equations are object_problem.hpp's.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include <Eigen/Geometry>
@@ -684,9 +685,14 @@ Solution solve_object(const Whisker& w, const Placement& X, const ObjectContact&
   if (hint) require_finite(*hint, "load.arc_length_hint");
   if (approach_W) require_finite(*approach_W, "load.approach");
   const detail::Scales sc(w);
-  const detail::ObjectGeometryB g = detail::object_in_body(X, object);
+  // A mesh answers this solve's queries from its triangles about the contact (Shape::local_view: about each place
+  // asked within a quarter of a link of its surface): the same answers as its tree's.
+  const std::unique_ptr<const Shape> view = object.shape->local_view(0.25 * w.length() / w.links());
+  ObjectContact local = object;
+  if (view) local.shape = view.get();
+  const detail::ObjectGeometryB g = detail::object_in_body(X, local);
   const detail::ObjectOutcome o = detail::solve_object_contact(w, sc, g, detail::FrictionLaw{}, hint, options, warm);
-  Solution out = detail::object_solution(w, X, object, g, o, options, approach_W, detail::default_two_contact_rounds);
+  Solution out = detail::object_solution(w, X, local, g, o, options, approach_W, detail::default_two_contact_rounds);
   if (out.status != Status::converged && out.status != Status::second_contact) out.surface.reset();
   return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
 }
