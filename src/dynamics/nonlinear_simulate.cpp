@@ -189,8 +189,15 @@ class Integrator {
         const std::size_t u = static_cast<std::size_t>(j);
         Jt_.middleRows<3>(3 * j) = kin_.joint_axes_B[u].transpose() * skew(cv.x_B - kin_.nodes_B[u]);
       }
-      Eigen::MatrixXd Ui(m_, 3);  // Phi^T J^T: three matrix-vector products with the first 3 (link + 1) rows of Phi
-      for (Eigen::Index k = 0; k < 3; ++k) Ui.col(k).noalias() = Phi_.topRows(joints).transpose() * Jt_.col(k);
+      // Phi^T J^T with the first 3 (link + 1) rows of Phi, mode by mode: the three dot products of a mode's column
+      // read it from memory once (three matrix-vector products read Phi three times).
+      Eigen::MatrixXd Ui(m_, 3);
+      for (Eigen::Index k = 0; k < m_; ++k) {
+        const auto col = Phi_.col(k).head(joints);
+        Ui(k, 0) = col.dot(Jt_.col(0));
+        Ui(k, 1) = col.dot(Jt_.col(1));
+        Ui(k, 2) = col.dot(Jt_.col(2));
+      }
       // The contact point's velocity in B: the base's, plus J q' = (Phi^T J^T)^T eta'.
       const Eigen::Vector3d v_B =
           R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + Ui.transpose() * rate;
@@ -321,8 +328,14 @@ class Integrator {
         return !deep_crossing_;  // no contact: exact
       }
       const Eigen::VectorXd delta = -solve_newton(D, g, out.contacts, U, r);
-      Y += delta;
       const double step = std::sqrt(k_.dot((g * delta).cwiseProduct(g * delta)) + delta.squaredNorm());
+      if (step <= 1e-3 * tol && it < 3) {
+        // Y solves the stage to within the correction's size (1e-3 of the tolerance), and this evaluation decided
+        // the contact set afresh (not frozen): Y is the solution, with this evaluation (no further one).
+        if (U_out) *U_out = std::move(U);
+        return !deep_crossing_;
+      }
+      Y += delta;
       if (step <= 1e-3 * tol) {
         out.eta = A_eta + g * Y;
         out.rate = Y;
