@@ -318,6 +318,14 @@ TEST(ArrayDynamics, BasesFollowTheArrayKinematicsAndStillWhiskersCarryNothing) {
   for (double m : still.MB) EXPECT_LT(m, 1e-16);  // rounding of the differentiated placements, 1e-8 of a whisk
   j["dynamics"] = {{"density", -1.0}};
   expect_config_error(j, "dynamics.density");
+  j["dynamics"] = {{"modes", 0}};  // "all" or a count >= 1
+  expect_config_error(j, "dynamics.modes");
+  j["dynamics"] = {{"modes", "some"}};
+  expect_config_error(j, "dynamics.modes");
+  j["dynamics"] = {{"modes", "all"}};
+  EXPECT_EQ(io::array_config_from_json(j).dynamics->modes, 0);
+  j["dynamics"] = {{"modes", 40}};
+  EXPECT_EQ(io::array_config_from_json(j).dynamics->modes, 40);
 }
 
 namespace vibrissa::array {
