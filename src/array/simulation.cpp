@@ -31,7 +31,7 @@ struct Prepared {
   std::vector<std::vector<std::vector<PlacedShape>>> shapes;  // [pitch][frame][object] (scenes of surfaces)
   bool surfaces = false;
   std::vector<int> render_index;                 // frame -> index among rendered frames, or -1
-  std::vector<std::vector<dynamics::LineObstacle>> obstacles;  // [pitch][edge] (--dynamics: contact during motion)
+  std::vector<std::vector<dynamics::Obstacle>> obstacles;  // [pitch][edge] (--dynamics: contact during motion)
 };
 
 void put3(std::vector<double>& v, std::size_t i, const Eigen::Vector3d& x) {
@@ -137,14 +137,14 @@ class PairRun {
 // infinite edges and pegs (the integrator's objects are infinite lines fixed in the world), friction mu in the
 // frictional edge mode. Edges that move with a moving head, finite edges (prisms) and surfaces are refused, naming
 // the object.
-std::vector<dynamics::LineObstacle> dynamics_obstacles(const SimulationConfig& c, const Prepared& prep,
+std::vector<dynamics::Obstacle> dynamics_obstacles(const SimulationConfig& c, const Prepared& prep,
                                                        std::size_t p) {
   if (prep.surfaces)
     throw std::invalid_argument("objects: --dynamics touches edges and pegs; surfaces (" + c.objects.front().kind +
                                 ") are not offered in the array's dynamics yet");
   const double mu = c.mode == ContactMode::frictional_edge ? c.mu : 0.0;
   const std::vector<EdgeSegment>& first = prep.edges[p].front();
-  std::vector<dynamics::LineObstacle> out;
+  std::vector<dynamics::Obstacle> out;
   for (std::size_t e = 0; e < first.size(); ++e) {
     if (first[e].finite())
       throw std::invalid_argument("objects: --dynamics touches infinite edges and pegs; edge " + std::to_string(e) +

@@ -49,7 +49,7 @@ struct SimulationOptions {
   bool record_nodes = true;           ///< node positions per frame (3(N+1) doubles a frame)
   ChainModel model = ChainModel::automatic;
   /// Objects the whisker may touch (contact.hpp); they need the nonlinear chain.
-  std::vector<LineObstacle> objects;
+  std::vector<Obstacle> objects;
   ContactLaw contact;
 };
 void validate(const SimulationOptions& options);
