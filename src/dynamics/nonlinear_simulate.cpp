@@ -415,6 +415,12 @@ class Integrator {
             cv.anchor_W = cv.point_W + R * (ft_B / kt_);
             cv.S_x += mu * (T * dir) * dfn_dx.transpose();
             cv.S_v += mu * (T * dir) * dfn_dv.transpose();
+            // In the tangent plane (the tip) the slip's direction turns with x: d dir / dx = -k_t (I - dir dir^T) T^T
+            // / |spring|.
+            if (norm > 0.0 && T.cols() == 2)
+              cv.S_x -= (mu * fn * kt_ / norm) * T *
+                        (Eigen::Matrix2d::Identity() - Eigen::Vector2d(dir) * Eigen::Vector2d(dir).transpose()) *
+                        T.transpose();
           }
         } else {
           cv.state = ContactState::slip;

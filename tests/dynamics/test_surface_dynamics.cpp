@@ -1,6 +1,6 @@
 // Surfaces in motion (dynamics/contact.hpp's SurfaceObstacle: planes, spheres, meshes through the shapes' own
 // queries): the quasi-static limit (solve_object's sequence), the force along the surface's normal, the penetration
-// tolerance.
+// tolerance, the friction cone, touch and release.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,6 +21,7 @@ namespace {
 using sweeps::curved_whisker;
 using sweeps::rest_point;
 using sweeps::smooth_sweep;
+using sweeps::sweep_there_and_back;
 
 struct Chain {
   Whisker w = curved_whisker(30);
@@ -127,5 +128,60 @@ TEST(DynamicsSurfaces, SlowSweepsIntoAWallAndASphereConvergeToTheObjectModeSeque
   }
 }
 
+TEST(DynamicsSurfaces, FrictionOnAWallStaysInsideTheConeAndSlipsAtItsBound) {
+  // The tip pressed onto the wall (mu = 0.3) slides along it: friction in the wall's tangent plane, |F_t| <= mu F_n,
+  // at the bound while it slips.
+  const Chain s;
+  const double mu = 0.3;
+  const auto wall = wall_ahead(s.w, 2e-3);
+  const TimeSeries ts = sweep(s, wall, mu, 0.1, 0.15, 1000.0);
+  ASSERT_EQ(ts.status, SimulationStatus::completed);
+  ASSERT_GE(ts.events.size(), 2u);
+  EXPECT_EQ(ts.events[0].type, ContactEventType::touch);
+  int slipping = 0, sticking = 0;
+  const Eigen::Vector3d n = -Eigen::Vector3d::UnitY();
+  for (std::size_t f = 0; f < ts.time.size(); ++f) {
+    if (ts.contacts[0].state[f] == ContactState::none) continue;
+    const Eigen::Vector3d& F = ts.contacts[0].force_W[f];
+    const double fn = F.dot(n), ft = (F - fn * n).norm();
+    EXPECT_GT(fn, 0.0);
+    EXPECT_LE(ft, mu * fn * (1.0 + 1e-9));
+    if (ts.contacts[0].state[f] == ContactState::slip) {
+      ++slipping;
+      EXPECT_NEAR(ft, mu * fn, 1e-9 * fn);
+    } else {
+      ++sticking;
+    }
+  }
+  std::printf("wall with friction: %d frames slipping, %d sticking, %zu events\n", slipping, sticking,
+              ts.events.size());
+  EXPECT_GT(slipping, 5);
+  EXPECT_GT(sticking, 5);
+}
+
+TEST(DynamicsSurfaces, TouchAndReleaseOfASphereAreReportedWhereTheGapCrossesZero) {
+  // Swept into the sphere and back out: one touch, one release, at the frames where the gap changes sign.
+  const Chain s;
+  const auto ball = sphere_behind(s.w, 0.02, 5e-4, 5e-3);
+  SimulationOptions opt;
+  opt.duration = 0.2;
+  opt.output_rate = 2000;
+  opt.record_nodes = false;
+  opt.objects = {obstacle(ball, ObjectPose{}, true, 0.0)};
+  const TimeSeries ts = simulate(s.w, s.model, s.all, sweep_there_and_back(-0.1, 0.15), s.dp.gravity_W, opt);
+  ASSERT_EQ(ts.status, SimulationStatus::completed);
+  ASSERT_EQ(ts.events.size(), 2u);
+  EXPECT_EQ(ts.events[0].type, ContactEventType::touch);
+  EXPECT_EQ(ts.events[1].type, ContactEventType::release);
+  for (const ContactEvent& e : ts.events) {
+    const auto f = static_cast<std::size_t>(std::floor(e.time * opt.output_rate));
+    ASSERT_LT(f + 1, ts.time.size());
+    EXPECT_LE(ts.contacts[0].gap[f] * ts.contacts[0].gap[f + 1], 0.0) << to_string(e.type) << " at " << e.time;
+    EXPECT_NEAR(e.arc_length, 0.02, 2e-3);
+  }
+  EXPECT_LT(ts.max_penetration, 1e-7);
+}
+
 }  // namespace
 }  // namespace vibrissa::dynamics
+
