@@ -1,7 +1,12 @@
 // Dynamics from Python (docs/dynamics.md, docs/python.md): the modes and a simulation of one whisker, parsed and
 // written by the same io code as `vibrissa modes` and `vibrissa dynamics` (settings as the case's JSON text, the
 // whisker given).
+#include <cstddef>
+#include <memory>
+#include <stdexcept>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
@@ -10,6 +15,7 @@
 #include "labelled.hpp"
 #include "vibrissa/io/dynamics_case.hpp"
 #include "vibrissa/io/json_input.hpp"
+#include "vibrissa/objects/shape.hpp"
 
 namespace vibrissa::python {
 namespace {
@@ -65,8 +71,22 @@ void bind_dynamics(py::module_& m) {
           py::arg("folder"));
   m.def(
       "_simulate_dynamics",
-      [](const Whisker& w, const std::string& text) {
-        const io::DynamicsCase c = settings(w, text);
+      [](const Whisker& w, const std::string& text,
+         const std::vector<std::tuple<std::size_t, std::shared_ptr<Shape>, bool, double>>& shapes) {
+        io::DynamicsCase c = settings(w, text);
+        // Shapes given as objects (vibrissa.Sphere(...), Mesh.from_file(...)), at their places in the list (in
+        // increasing order; the JSON text has the others).
+        for (const auto& [index, shape, thickness, mu] : shapes) {
+          if (!shape) throw std::invalid_argument("objects[" + std::to_string(index) + "]: no shape given");
+          if (index > c.options.objects.size())
+            throw std::invalid_argument("objects[" + std::to_string(index) + "]: out of order");
+          try {
+            c.options.objects.insert(c.options.objects.begin() + static_cast<std::ptrdiff_t>(index),
+                                     dynamics::obstacle(shape, ObjectPose{}, thickness, mu));
+          } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument("objects[" + std::to_string(index) + "]: " + e.what());
+          }
+        }
         py::gil_scoped_release release;
         const dynamics::LinearModel model = dynamics::linear_model(c.whisker, c.properties);
         DynamicsRun run{{}, dynamics::modes(model, c.whisker), {}};
@@ -75,7 +95,8 @@ void bind_dynamics(py::module_& m) {
         run.summary = io::dynamics_summary(run.series, run.modes, c);
         return run;
       },
-      py::arg("whisker"), py::arg("settings_json"));
+      py::arg("whisker"), py::arg("settings_json"),
+      py::arg("shapes") = std::vector<std::tuple<std::size_t, std::shared_ptr<Shape>, bool, double>>{});
 }
 
 }  // namespace vibrissa::python

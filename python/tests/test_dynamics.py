@@ -178,3 +178,26 @@ def test_a_peg_during_whisking_is_touched_then_let_go_at_the_tip():
         vibrissa.simulate_dynamics(w, 0.01, objects=[{"type": "wall", "point": [0, 0, 0]}])
     with pytest.raises(ValueError, match="linear"):
         vibrissa.simulate_dynamics(w, 0.01, objects=[peg], model="linear")
+
+
+def test_surfaces_in_motion_as_shapes_or_json_and_invalid_ones_named():
+    # docs/dynamics.md, "Surfaces in motion": whisking against a 3 mm sphere; a vibrissa.Sphere and its JSON are
+    # the same object; friction through {"shape": ..., "friction_coefficient": mu}.
+    w = vibrissa.Whisker.from_parabola(0.03, 15.0, properties=vibrissa.WhiskerProperties(links=30))
+    ball = vibrissa.Sphere([0.018, 0.013, 0.0], 0.003)
+    wh = {"amplitude_deg": 12, "frequency_Hz": 4, "set_point_deg": 12}
+    a = vibrissa.simulate_dynamics(w, 0.1, 1000, objects=[ball], whisking=wh)
+    b = vibrissa.simulate_dynamics(w, 0.1, 1000, whisking=wh,
+                                   objects=[{"type": "sphere", "centre": [0.018, 0.013, 0.0], "radius": 0.003}])
+    assert a.status == "completed" and a.events[0]["type"] == "touch"
+    assert np.array_equal(a.MB, b.MB)
+    c = vibrissa.simulate_dynamics(w, 0.1, 1000, objects=[{"shape": ball, "friction_coefficient": 0.2}], whisking=wh)
+    assert c.events[0]["type"] == "touch" and (c.contact0_state == 1).sum() > 10  # sticks on the sphere
+    assert a.summary["max_penetration_m"] < 1e-7 and c.summary["max_penetration_m"] < 1e-7
+    with pytest.raises(ValueError, match=r"objects\[0\]: unknown field 'mu'"):
+        vibrissa.simulate_dynamics(w, 0.01, objects=[{"shape": ball, "mu": 0.2}])
+    with pytest.raises(ValueError, match=r"objects\[1\].*friction_coefficient must be >= 0"):
+        vibrissa.simulate_dynamics(w, 0.01, objects=[ball, {"shape": ball, "friction_coefficient": -1}])
+    with pytest.raises(ValueError, match=r"objects\[0\].*thickness"):
+        box = vibrissa.Box([0.02, 0.01, 0], [0.001, 0.001, 0.001])
+        vibrissa.simulate_dynamics(w, 0.01, objects=[{"shape": box, "thickness": False}])

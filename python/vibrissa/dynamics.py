@@ -6,7 +6,7 @@ that reads the case reads them), so a call and the command give the same numbers
 
 import json
 
-from ._vibrissa import _modes, _simulate_dynamics
+from ._vibrissa import Shape, _modes, _simulate_dynamics
 from .labelled import to_dataset
 from .pipeline import _NamedArrays
 
@@ -111,8 +111,12 @@ def simulate_dynamics(whisker, duration=1.0, output_rate=1000.0, *, whisking=Non
     length (a peg letting go). ``gravity`` (3,) [m/s²] in the world frame.
 
     ``objects``: a list of dicts as the case's ``"objects"`` (``{"type": "peg", "point": [...], "direction": [...],
-    "radius": r, "friction_coefficient": mu}`` or ``{"type": "edge", ...}``, world frame, SI) that the whisker may
-    touch during the motion (the nonlinear chain; events in ``result.events``, per-object columns ``contact0_...``);
+    "radius": r, "friction_coefficient": mu}``, ``{"type": "edge", ...}``, or a surface as ``vibrissa solve``'s
+    object: ``{"type": "sphere", "centre": [...], "radius": R, "friction_coefficient": mu, "thickness": True}``,
+    plane, cylinder, box, mesh; world frame, SI), or shapes (``vibrissa.Sphere(...)``, ``vibrissa.Mesh.from_file(...)``,
+    frictionless, the whisker's thickness), or ``{"shape": shape, "friction_coefficient": mu, "thickness": True}``,
+    that the whisker may touch during the motion (the nonlinear chain; events in ``result.events``, per-object
+    columns ``contact0_...``);
     ``contact``: ``{"stiffness", "tangential_stiffness", "damping_ratio"}``; ``model``: "automatic", "linear" or
     "nonlinear"."""
     initial = {}
@@ -122,8 +126,27 @@ def simulate_dynamics(whisker, duration=1.0, output_rate=1000.0, *, whisking=Non
         initial["force"] = [float(f) for f in force]
     if arc_length is not None:
         initial["arc_length"] = float(arc_length)
+    described, shapes = _split_objects(objects)
     text = _settings(density, damping_ratio, joint_damping_time, gravity, duration=float(duration),
                      output_rate=float(output_rate), whisking=whisking, initial=initial or None,
                      relative_tolerance=relative_tolerance, absolute_tolerance=absolute_tolerance,
-                     objects=list(objects) if objects is not None else None, contact=contact, model=model)
-    return DynamicsResult(_simulate_dynamics(whisker, text), whisker.links)
+                     objects=described, contact=contact, model=model)
+    return DynamicsResult(_simulate_dynamics(whisker, text, shapes), whisker.links)
+
+
+def _split_objects(objects):
+    """The objects described in JSON, and the shapes given as objects with their places in the list."""
+    if objects is None:
+        return None, []
+    described, shapes = [], []
+    for k, o in enumerate(objects):
+        if isinstance(o, Shape):
+            shapes.append((k, o, True, 0.0))
+        elif isinstance(o, dict) and isinstance(o.get("shape"), Shape):
+            unknown = sorted(set(o) - {"shape", "thickness", "friction_coefficient"})
+            if unknown:
+                raise ValueError(f"objects[{k}]: unknown field {unknown[0]!r}")
+            shapes.append((k, o["shape"], bool(o.get("thickness", True)), float(o.get("friction_coefficient", 0.0))))
+        else:
+            described.append(o)
+    return described, shapes

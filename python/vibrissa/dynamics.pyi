@@ -4,7 +4,7 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Union
 import numpy as np
 import numpy.typing as npt
 
-from ._vibrissa import Whisker
+from ._vibrissa import Shape, Whisker
 
 class _ModesView:
     frequency: npt.NDArray[np.float64]
@@ -37,4 +37,7 @@ def simulate_dynamics(whisker: Whisker, duration: float = 1.0, output_rate: floa
                       density: Optional[float] = None, damping_ratio: Optional[float] = None,
                       joint_damping_time: Optional[float] = None, gravity: Optional[Sequence[float]] = None,
                       relative_tolerance: Optional[float] = None,
-                      absolute_tolerance: Optional[float] = None) -> DynamicsResult: ...
+                      absolute_tolerance: Optional[float] = None,
+                      objects: Optional[Sequence[Union[Mapping[str, Any], Shape]]] = None,
+                      contact: Optional[Mapping[str, Any]] = None,
+                      model: Optional[str] = None) -> DynamicsResult: ...

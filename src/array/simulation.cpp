@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <optional>
 
@@ -31,7 +32,7 @@ struct Prepared {
   std::vector<std::vector<std::vector<PlacedShape>>> shapes;  // [pitch][frame][object] (scenes of surfaces)
   bool surfaces = false;
   std::vector<int> render_index;                 // frame -> index among rendered frames, or -1
-  std::vector<std::vector<dynamics::LineObstacle>> obstacles;  // [pitch][edge] (--dynamics: contact during motion)
+  std::vector<std::vector<dynamics::Obstacle>> obstacles;  // [pitch][edge] (--dynamics: contact during motion)
 };
 
 void put3(std::vector<double>& v, std::size_t i, const Eigen::Vector3d& x) {
@@ -134,17 +135,27 @@ class PairRun {
 };
 
 // The scene's edges (edges_in_world order) as contacts during motion (dynamics/contact.hpp) for one head pitch:
-// infinite edges and pegs (the integrator's objects are infinite lines fixed in the world), friction mu in the
-// frictional edge mode. Edges that move with a moving head, finite edges (prisms) and surfaces are refused, naming
-// the object.
-std::vector<dynamics::LineObstacle> dynamics_obstacles(const SimulationConfig& c, const Prepared& prep,
+// infinite edges and pegs (the integrator's line objects), or the surfaces, fixed in the world, friction mu in the
+// frictional edge mode. Objects that move with a moving head and finite edges (prisms) are refused, naming the
+// object.
+std::vector<dynamics::Obstacle> dynamics_obstacles(const SimulationConfig& c, const Prepared& prep,
                                                        std::size_t p) {
-  if (prep.surfaces)
-    throw std::invalid_argument("objects: --dynamics touches edges and pegs; surfaces (" + c.objects.front().kind +
-                                ") are not offered in the array's dynamics yet");
   const double mu = c.mode == ContactMode::frictional_edge ? c.mu : 0.0;
+  if (prep.surfaces) {
+    // Surfaces (dynamics/contact.hpp's SurfaceObstacle), with the solver's thickness, fixed in the world.
+    std::vector<dynamics::Obstacle> out;
+    const std::vector<PlacedShape>& first = prep.shapes[p].front();
+    for (std::size_t k = 0; k < first.size(); ++k) {
+      for (const std::vector<PlacedShape>& later : prep.shapes[p])
+        if (later[k].X_WO.p_WO != first[k].X_WO.p_WO || later[k].X_WO.R_WO != first[k].X_WO.R_WO)
+          throw std::invalid_argument("objects: --dynamics needs objects fixed in the world; objects[" +
+                                      std::to_string(k) + "] (" + c.objects[k].kind + ") moves with the head");
+      out.push_back(dynamics::obstacle(c.objects[k].shape, first[k].X_WO, c.thickness, mu));
+    }
+    return out;
+  }
   const std::vector<EdgeSegment>& first = prep.edges[p].front();
-  std::vector<dynamics::LineObstacle> out;
+  std::vector<dynamics::Obstacle> out;
   for (std::size_t e = 0; e < first.size(); ++e) {
     if (first[e].finite())
       throw std::invalid_argument("objects: --dynamics touches infinite edges and pegs; edge " + std::to_string(e) +
@@ -209,7 +220,20 @@ void run_dynamics(const SimulationConfig& c, const Prepared& prep, ArrayResult& 
           (touching < 0 || ts.contacts[j].force_W[f].norm() >
                                ts.contacts[static_cast<std::size_t>(touching)].force_W[f].norm()))
         touching = static_cast<int>(j);
-    if (touching >= 0) {
+    if (touching >= 0 && prep.surfaces) {
+      // A surface: normal_force F . n (n the surface's normal at the contact), edge_force the friction force's
+      // magnitude in the tangent plane, z_edge NaN.
+      const std::size_t j = static_cast<std::size_t>(touching);
+      const Eigen::Vector3d& Fc = ts.contacts[j].force_W[f];
+      const Eigen::Vector3d n = prep.shapes[p][f][j].nearest_W(ts.contacts[j].point_W[f]).normal;
+      r.state[k] = static_cast<std::int8_t>(ContactState::contact);
+      r.edge[k] = static_cast<std::int16_t>(j);
+      r.s_applied[k] = ts.contacts[j].arc_length[f];
+      put3(r.contact_W, k, ts.contacts[j].point_W[f]);
+      r.normal_force[k] = Fc.dot(n);
+      r.edge_force[k] = (Fc - r.normal_force[k] * n).norm();
+      r.z_edge[k] = std::numeric_limits<double>::quiet_NaN();
+    } else if (touching >= 0) {
       const std::size_t e_index = static_cast<std::size_t>(touching);
       const EdgeSegment& e = prep.edges[p][f][e_index];
       const Eigen::Vector3d& Fc = ts.contacts[e_index].force_W[f];

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "vibrissa/core/checks.hpp"
 
@@ -41,6 +42,31 @@ LineObstacle line_obstacle(const ObjectContact& object, double mu) {
   o.radius = core->radius;
   o.thickness = object.thickness;
   o.friction_coefficient = mu;
+  validate(o);
+  return o;
+}
+
+void validate(const SurfaceObstacle& o) {
+  validate(ObjectContact{o.shape.get(), o.X_WO, o.thickness});
+  require_finite(o.friction_coefficient, "object.friction_coefficient");
+  if (o.friction_coefficient < 0.0)
+    throw std::invalid_argument("object.friction_coefficient must be >= 0, got " +
+                                format_value(o.friction_coefficient));
+}
+
+void validate(const Obstacle& o) {
+  std::visit([](const auto& x) { validate(x); }, o);
+}
+
+double friction_coefficient(const Obstacle& o) {
+  return std::visit([](const auto& x) { return x.friction_coefficient; }, o);
+}
+
+Obstacle obstacle(std::shared_ptr<const Shape> shape, const ObjectPose& X_WO, bool thickness, double mu) {
+  const ObjectContact contact{shape.get(), X_WO, thickness};
+  validate(contact);
+  if (shape->line_core()) return line_obstacle(contact, mu);
+  SurfaceObstacle o{std::move(shape), X_WO, thickness, mu};
   validate(o);
   return o;
 }

@@ -19,13 +19,17 @@
 // flickers: Alexander's two-stage SDIRK (same order, all stages implicit) with step doubling (run()).
 #include "nonlinear_simulate.hpp"
 #include "step_control.hpp"
+#include "surface_contact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <iterator>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <span>
 #include <string>
+#include <variant>
 
 #include <Eigen/LU>
 
@@ -52,6 +56,7 @@ struct ContactValue {
   double arc_length = 0.0;
   double anchor = 0.0;  ///< stick point's coordinate along the line [m]
   double side = 0.0;    ///< +-1: the side of the line the whisker is on; 0: not known
+  Eigen::Vector3d anchor_W = Eigen::Vector3d::Zero();  ///< a surface's stick point (world) [m]
   int link = 0;
   Eigen::Vector3d x_B = Eigen::Vector3d::Zero(), force_B = Eigen::Vector3d::Zero();
   Eigen::Vector3d point_W = Eigen::Vector3d::Zero(), force_W = Eigen::Vector3d::Zero();
@@ -94,11 +99,21 @@ class Integrator {
     }
     kn_ = opt.contact.stiffness;
     kt_ = opt.contact.tangential_stiffness > 0.0 ? opt.contact.tangential_stiffness : kn_;
-    for (const LineObstacle& o : opt.objects) {
-      LineObstacle u = o;
-      u.direction_W = o.direction_W.normalized();
-      objects_.push_back(u);
-    }
+    // Contact slots: the line objects' first (one each, indexed as objects_), then the surfaces' (surface_slots
+    // each).
+    for (std::size_t k = 0; k < opt.objects.size(); ++k)
+      if (const auto* line = std::get_if<LineObstacle>(&opt.objects[k])) {
+        LineObstacle u = *line;
+        u.direction_W = line->direction_W.normalized();
+        objects_.push_back(u);
+        object_of_.push_back(k);
+      }
+    for (std::size_t k = 0; k < opt.objects.size(); ++k)
+      if (const auto* surface = std::get_if<SurfaceObstacle>(&opt.objects[k])) {
+        surfaces_.push_back(*surface);
+        for (std::size_t j = 0; j < surface_slots; ++j) object_of_.push_back(k);
+      }
+    slots_ = object_of_.size();
   }
 
   Frame frame(double t) const {
@@ -146,9 +161,15 @@ class Integrator {
     if (truncated_) q_ += f.static_q;
     chain_kinematics(w_, q_, kin_);
     deep_crossing_ = false;
-    out.assign(objects_.size(), ContactValue{});
+    // Newton's held surface contacts stay near the links of the iteration before (`out` holds it).
+    hold_link_.assign(slots_, -1);
+    if (frozen && out.size() == slots_)
+      for (std::size_t k = objects_.size(); k < slots_; ++k)
+        if ((*frozen)[k] != ContactState::none) hold_link_[k] = out[k].link;
+    out.assign(slots_, ContactValue{});
     modal_force.setZero(m_);
-    if (U) U->assign(objects_.size(), Eigen::MatrixXd());
+    if (U) U->assign(slots_, Eigen::MatrixXd());
+    if (!surfaces_.empty()) evaluate_surfaces(f, rate, previous, out, modal_force, U, frozen);
     const Eigen::Matrix3d& R = f.base.R_WB;
     const auto& radii = w_.node_radii();
     const auto& arc = w_.node_arc_lengths();
@@ -346,6 +367,145 @@ class Integrator {
     }
   }
 
+  /// Phi^T J^T of the point x_B on link `link` (the modal projection of a force there).
+  Eigen::MatrixXd modal_projection(int link, const Eigen::Vector3d& x_B) {
+    const Eigen::Index joints = 3 * (link + 1);
+    Jt_.resize(joints, 3);
+    for (int j = 0; j <= link; ++j) {
+      const std::size_t u = static_cast<std::size_t>(j);
+      Jt_.middleRows<3>(3 * j) = kin_.joint_axes_B[u].transpose() * skew(x_B - kin_.nodes_B[u]);
+    }
+    Eigen::MatrixXd Ui(m_, 3);
+    for (Eigen::Index k = 0; k < 3; ++k) Ui.col(k).noalias() = Phi_.topRows(joints).transpose() * Jt_.col(k);
+    return Ui;
+  }
+
+  /// The surfaces' contacts (slots objects_.size() ...; see evaluate_contacts): the points found by
+  /// surface_contacts, the line's penalty and damping along the surface's normal n, and the frictional object
+  /// mode's friction (docs/objects.md, "Friction"): across the whisker along b = n x t / |n x t| (the whisker slides
+  /// freely along itself), in the whole tangent plane at the tip (or where the whisker is along n), with the line's
+  /// elastic-plastic stick spring holding the contact at its anchor (a point in the world) and the Coulomb bound
+  /// |F_t| <= mu F_n.
+  void evaluate_surfaces(const Frame& f, const Eigen::VectorXd& rate, const std::vector<ContactValue>& previous,
+                         std::vector<ContactValue>& out, Eigen::VectorXd& modal_force, std::vector<Eigen::MatrixXd>* U,
+                         const std::vector<ContactState>* frozen) {
+    const Eigen::Matrix3d& R = f.base.R_WB;
+    const std::size_t n_nodes = kin_.nodes_B.size(), last_link = n_nodes - 2;
+    nodes_W_.resize(n_nodes);
+    for (std::size_t i = 0; i < n_nodes; ++i) nodes_W_[i] = f.base.p_W_base + R * kin_.nodes_B[i];
+    std::array<double, surface_slots> before_arc{};
+    std::array<int, surface_slots> hold{};
+    std::array<SurfaceCandidate, surface_slots> found{};
+    SurfaceCandidate nearest;
+    for (std::size_t s = 0; s < surfaces_.size(); ++s) {
+      const SurfaceObstacle& ob = surfaces_[s];
+      const std::size_t first = objects_.size() + s * surface_slots;
+      for (std::size_t j = 0; j < surface_slots; ++j) {
+        const ContactValue& p = previous[first + j];
+        before_arc[j] = p.state != ContactState::none ? p.arc_length : std::numeric_limits<double>::quiet_NaN();
+        hold[j] = hold_link_[first + j];
+      }
+      const std::span<const double> radii =
+          ob.thickness ? std::span<const double>(w_.node_radii()) : std::span<const double>();
+      surface_contacts(PlacedShape{ob.shape.get(), ob.X_WO}, nodes_W_, w_.node_arc_lengths(), radii, before_arc, hold,
+                       found, nearest);
+      for (std::size_t j = 0; j < surface_slots; ++j) {
+        const std::size_t o = first + j;
+        ContactValue& cv = out[o];
+        const ContactValue& before = previous[o];
+        const SurfaceCandidate& c = found[j].found ? found[j] : nearest;
+        cv.gap = c.gap;
+        cv.link = c.link;
+        cv.arc_length = c.arc_length;
+        cv.point_W = c.point_W;
+        cv.x_B = R.transpose() * (c.point_W - f.base.p_W_base);
+        cv.anchor_W = before.anchor_W;
+        const bool frozen_on = frozen && (*frozen)[o] != ContactState::none;
+        if (!found[j].found || (frozen && !frozen_on)) continue;
+        if (cv.gap >= 0.0 && !frozen_on) continue;
+        const Eigen::Vector3d n = R.transpose() * c.surface.normal;
+        Eigen::MatrixXd Ui = modal_projection(cv.link, cv.x_B);
+        const Eigen::Vector3d v_B =
+            R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + Ui.transpose() * rate;
+        const double inv_mass = (Ui * n).squaredNorm();
+        const double cn = 2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / std::max(inv_mass, 1e-300));
+        const double gap_rate = n.dot(v_B);
+        const double fn_raw = -kn_ * cv.gap - cn * gap_rate;
+        const double fn = frozen_on ? fn_raw : std::max(0.0, fn_raw);
+        if (before.state == ContactState::none) cv.anchor_W = cv.point_W;  // touches: sticks where it touched
+        if (!(fn > 0.0 || frozen_on)) {
+          // Inside, but the damper pulls harder than the spring pushes: no force, still touching (as the line's).
+          cv.anchor_W = cv.point_W;
+          cv.state = before.state != ContactState::none ? before.state : ContactState::slip;
+          continue;
+        }
+        const bool damped = frozen_on || (fn_raw > 0.0 && cn * gap_rate != 0.0);
+        const Eigen::Vector3d dfn_dx = -kn_ * n, dfn_dv = damped ? Eigen::Vector3d(-cn * n) : Eigen::Vector3d::Zero();
+        cv.S_x = n * dfn_dx.transpose();
+        cv.S_v = n * dfn_dv.transpose();
+        // Friction's directions T (B): b = n x t across the whisker on its side; the tangent plane at the tip.
+        const Eigen::Vector3d t_hat = (kin_.nodes_B[c.link + 1] - kin_.nodes_B[c.link]).normalized();
+        const Eigen::Vector3d b = n.cross(t_hat);
+        const bool tip = static_cast<std::size_t>(c.link) == last_link && c.tau >= 1.0 - 1e-12;
+        Eigen::Matrix<double, 3, Eigen::Dynamic> T;
+        if (tip || b.norm() < 1e-6) {
+          const Eigen::Vector3d e1 = n.unitOrthogonal();
+          T.resize(3, 2);
+          T << e1, n.cross(e1);
+        } else {
+          T = b.normalized();
+        }
+        const double mu = surfaces_[s].friction_coefficient;
+        Eigen::Vector3d ft_B = Eigen::Vector3d::Zero();
+        if (mu > 0.0) {
+          const double limit = mu * std::max(fn, 0.0);
+          const Eigen::Vector3d anchor_B = R.transpose() * (cv.anchor_W - f.base.p_W_base);
+          const Eigen::VectorXd spring = -kt_ * (T.transpose() * (cv.x_B - anchor_B));
+          Eigen::VectorXd ct(T.cols()), damper(T.cols());
+          for (Eigen::Index k = 0; k < T.cols(); ++k) {
+            ct(k) = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * T.col(k)).squaredNorm(), 1e-300));
+            damper(k) = -ct(k) * T.col(k).dot(v_B);
+          }
+          const ContactState keep = frozen ? (*frozen)[o] : ContactState::none;
+          const bool stick = keep != ContactState::none ? keep == ContactState::stick : spring.norm() <= limit;
+          if (stick) {
+            cv.state = ContactState::stick;
+            Eigen::VectorXd ft = spring + damper;
+            cv.S_x -= kt_ * T * T.transpose();
+            if (keep == ContactState::none && ft.norm() > limit) {
+              ft *= limit / ft.norm();
+            } else {
+              cv.S_v -= T * ct.asDiagonal() * T.transpose();
+            }
+            ft_B = T * ft;
+          } else {
+            cv.state = ContactState::slip;
+            const double norm = spring.norm();
+            const Eigen::VectorXd dir = norm > 0.0 ? Eigen::VectorXd(spring / norm) : Eigen::VectorXd::Zero(T.cols());
+            ft_B = T * (mu * fn * dir);
+            // The stick point slides along with the contact.
+            cv.anchor_W = cv.point_W + R * (ft_B / kt_);
+            cv.S_x += mu * (T * dir) * dfn_dx.transpose();
+            cv.S_v += mu * (T * dir) * dfn_dv.transpose();
+            // In the tangent plane (the tip) the slip's direction turns with x: d dir / dx = -k_t (I - dir dir^T) T^T
+            // / |spring|.
+            if (norm > 0.0 && T.cols() == 2)
+              cv.S_x -= (mu * fn * kt_ / norm) * T *
+                        (Eigen::Matrix2d::Identity() - Eigen::Vector2d(dir) * Eigen::Vector2d(dir).transpose()) *
+                        T.transpose();
+          }
+        } else {
+          cv.state = ContactState::slip;
+          cv.anchor_W = cv.point_W;
+        }
+        cv.force_B = fn * n + ft_B;
+        cv.force_W = R * cv.force_B;
+        modal_force.noalias() += Ui * cv.force_B;
+        if (U) (*U)[o] = std::move(Ui);
+      }
+    }
+  }
+
   /// Solves N x = r with N = D - sum U g (g S_x + S_v) U^T, the stage's Newton matrix (D = 1 + g c + g^2 k) at the
   /// contacts `contacts` whose projections Phi^T J^T are in `U` (empty: not pushing): Woodbury with them stacked.
   Eigen::VectorXd solve_newton(const Eigen::VectorXd& D, double g, const std::vector<ContactValue>& contacts,
@@ -432,9 +592,9 @@ class Integrator {
     // g = 0), a jump of f that the explicit first stage would see at the step's end only (and the error estimate
     // would shrink the step around it without end). The step is taken again with f at its start from the contact
     // law continued across g = 0 (the contacts of the step's end held on), as the implicit stages see it.
-    std::vector<ContactState> held(objects_.size(), ContactState::none);
+    std::vector<ContactState> held(slots_, ContactState::none);
     bool touched = false;
-    for (std::size_t o = 0; o < objects_.size(); ++o) {
+    for (std::size_t o = 0; o < slots_; ++o) {
       const ContactState before = y.contacts[o].state, after = out.contacts[o].state;
       touched = touched || (before == ContactState::none && after != ContactState::none);
       held[o] = before != ContactState::none ? before : after;
@@ -499,15 +659,15 @@ class Integrator {
       y.eta = frame(0.0).modal_input.cwiseQuotient(k_);
     }
     {
-      const std::vector<ContactValue> none(objects_.size());
+      const std::vector<ContactValue> none(slots_);
       evaluate_contacts(frame(0.0), y.eta, y.rate, none, y.contacts, y.contact_force, nullptr);
-      for (std::size_t o = 0; o < objects_.size(); ++o)
+      for (std::size_t o = 0; o < slots_; ++o)
         if (y.contacts[o].state != ContactState::none)
           ts.events.push_back(event(0.0, ContactEventType::touch, o, y.contacts[o]));
     }
     const long frames = static_cast<long>(std::floor(opt_.duration * opt_.output_rate * (1.0 + 1e-12))) + 1;
     ts.q.resize(n, frames);
-    ts.contacts.assign(objects_.size(), ContactChannels{});
+    ts.contacts.assign(opt_.objects.size(), ContactChannels{});
     record(ts, 0, 0.0, y);
 
     double scale = energy_norm(y.eta, y.rate);
@@ -563,12 +723,12 @@ class Integrator {
   }
 
  private:
-  static ContactEvent event(double t, ContactEventType type, std::size_t o, const ContactValue& cv) {
-    return ContactEvent{t, type, static_cast<int>(o), cv.arc_length, cv.point_W, cv.force_W};
+  ContactEvent event(double t, ContactEventType type, std::size_t slot, const ContactValue& cv) const {
+    return ContactEvent{t, type, static_cast<int>(object_of_[slot]), cv.arc_length, cv.point_W, cv.force_W};
   }
 
   void note_events(TimeSeries& ts, double t0, double h, const State& a, const State& b) {
-    for (std::size_t o = 0; o < objects_.size(); ++o) {
+    for (std::size_t o = 0; o < slots_; ++o) {
       const ContactValue &p = a.contacts[o], &c = b.contacts[o];
       ts.max_penetration = std::max(ts.max_penetration, -c.gap);
       const bool was = p.state != ContactState::none, is = c.state != ContactState::none;
@@ -585,7 +745,7 @@ class Integrator {
         // the nodes between links as it slides off (1-100 us each, every 0.1-0.4 ms in the array against the
         // peg), grazing within a few 1e-11 m near the tip (ns), and bounces at a touch (~10 us).
         const auto last = std::find_if(ts.events.rbegin(), ts.events.rend(),
-                                       [&](const ContactEvent& e) { return e.object == static_cast<int>(o); });
+                                       [&](const ContactEvent& e) { return e.object == static_cast<int>(object_of_[o]); });
         if (last != ts.events.rend() && last->type == ContactEventType::release && t - last->time < release_merge_time)
           ts.events.erase(std::next(last).base());
         else
@@ -594,7 +754,7 @@ class Integrator {
         transitions_.push_back(crossing());
         ts.events.push_back(event(crossing(), ContactEventType::release, o, p));
       }
-      if (objects_[o].friction_coefficient > 0.0 && is) {
+      if (friction_coefficient(opt_.objects[object_of_[o]]) > 0.0 && is) {
         if (c.state == ContactState::slip && p.state != ContactState::slip) {
           transitions_.push_back(t0 + h);
           ts.events.push_back(event(t0 + h, ContactEventType::slip, o, c));
@@ -639,14 +799,25 @@ class Integrator {
       for (std::size_t i = 0; i <= N; ++i) nodes[i] = X.to_world(kin_.nodes_B[i]);
       ts.nodes_W.push_back(std::move(nodes));
     }
-    for (std::size_t o = 0; o < s.contacts.size(); ++o) {
-      const ContactValue& cv = s.contacts[o];
-      ContactChannels& ch = ts.contacts[o];
-      ch.state.push_back(cv.state);
-      ch.arc_length.push_back(cv.arc_length);
-      ch.gap.push_back(cv.gap);
-      ch.point_W.push_back(cv.point_W);
-      ch.force_W.push_back(cv.force_W);
+    // Per object: its deepest slot's state, gap and point, and the force of all its slots.
+    for (std::size_t k = 0; k < ts.contacts.size(); ++k) {
+      const ContactValue* deepest = nullptr;
+      Eigen::Vector3d force_W = Eigen::Vector3d::Zero();
+      for (std::size_t o = 0; o < s.contacts.size(); ++o) {
+        if (object_of_[o] != k) continue;
+        const ContactValue& cv = s.contacts[o];
+        force_W += cv.force_W;
+        const bool on = cv.state != ContactState::none;
+        if (!deepest || (on && deepest->state == ContactState::none) ||
+            (on == (deepest->state != ContactState::none) && cv.gap < deepest->gap))
+          deepest = &cv;
+      }
+      ContactChannels& ch = ts.contacts[k];
+      ch.state.push_back(deepest->state);
+      ch.arc_length.push_back(deepest->arc_length);
+      ch.gap.push_back(deepest->gap);
+      ch.point_W.push_back(deepest->point_W);
+      ch.force_W.push_back(force_W);
     }
   }
 
@@ -664,7 +835,13 @@ class Integrator {
   Eigen::MatrixXd static_input_;         ///< R G (truncated basis only)
   double kn_ = 0.0, kt_ = 0.0;
   bool deep_crossing_ = false;  ///< the last evaluation found a line crossed deeper than kMaxCrossing
-  std::vector<LineObstacle> objects_;
+  std::vector<LineObstacle> objects_;           ///< the line objects (the first slots)
+  std::vector<SurfaceObstacle> surfaces_;       ///< the surfaces (surface_slots slots each, after the lines')
+  static constexpr std::size_t surface_slots = 2;  ///< contact points per surface
+  std::vector<std::size_t> object_of_;          ///< slot -> index into SimulationOptions::objects
+  std::size_t slots_ = 0;
+  std::vector<int> hold_link_;                  ///< per slot: the link a held surface contact stays near (-1: none)
+  std::vector<Eigen::Vector3d> nodes_W_;
   std::vector<double> transitions_;  ///< times of every touch and release, reported or not (the flicker switch)
   static constexpr double release_merge_time = 1e-4;  // [s]
   Eigen::VectorXd q_;
@@ -678,7 +855,7 @@ TimeSeries simulate_nonlinear(const Whisker& w, const LinearModel& model, const 
                               const BaseTrajectory& base, const Eigen::Vector3d& gravity_W,
                               const SimulationOptions& options, const InitialState& initial) {
   validate(options.contact);
-  for (const LineObstacle& o : options.objects) validate(o);
+  for (const Obstacle& o : options.objects) validate(o);
   if (modes.count() != model.size())
     throw std::invalid_argument("simulate needs all " + std::to_string(model.size()) + " modes of the model, got " +
                                 std::to_string(modes.count()));

@@ -7,4 +7,5 @@ target_sources(vibrissa PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/linear_model.cpp
   ${CMAKE_CURRENT_LIST_DIR}/modes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/nonlinear_simulate.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/simulate.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/simulate.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/surface_contact.cpp)

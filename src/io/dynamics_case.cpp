@@ -17,6 +17,7 @@
 #include "vibrissa/io/case_json.hpp"
 #include "vibrissa/io/json_file.hpp"
 #include "vibrissa/io/json_input.hpp"
+#include "vibrissa/io/object_json.hpp"
 #include "vibrissa/io/output_folder.hpp"
 #include "vibrissa/solve/whisker_frame_signals.hpp"
 
@@ -140,9 +141,26 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
     for (std::size_t k = 0; k < list.size(); ++k) {
       const std::string where = "objects[" + std::to_string(k) + "]";
       const json& o = list[k];
-      only_keys(o, where, {"type", "point", "direction", "radius", "thickness", "friction_coefficient"});
       const std::string type = o.contains("type") ? json_string(o.at("type"), where + ".type") : "";
-      if (type != "edge" && type != "peg") fail(where + ".type must be \"edge\" or \"peg\", got " + quote_text(type));
+      if (type != "edge" && type != "peg") {
+        // A surface (the objects of `vibrissa solve`: plane, sphere, cylinder, box, mesh; SI), with the whisker's
+        // thickness by default.
+        if (!o.is_object() || type.empty())
+          fail(where + ".type must be \"edge\", \"peg\", \"cylinder\", \"plane\", \"sphere\", \"box\" or "
+               "\"mesh\", got " + quote_text(type));
+        const std::shared_ptr<const Shape> shape =
+            shape_from_json(o, where, LengthKeys::metres, {}, {"thickness", "friction_coefficient"});
+        const bool thickness = o.contains("thickness") ? json_bool(o.at("thickness"), where + ".thickness") : true;
+        const double mu = number_or(o, "friction_coefficient", where, 0.0);
+        if (!(mu >= 0.0)) fail(where + ".friction_coefficient must be >= 0, got " + format_value(mu));
+        try {
+          c.options.objects.push_back(dynamics::obstacle(shape, ObjectPose{}, thickness, mu));
+        } catch (const std::invalid_argument& e) {
+          fail(where + ": " + e.what());
+        }
+        continue;
+      }
+      only_keys(o, where, {"type", "point", "direction", "radius", "thickness", "friction_coefficient"});
       if (!o.contains("point")) fail(where + " needs \"point\" [m]");
       dynamics::LineObstacle ob;
       ob.point_W = json_vec3(o.at("point"), where + ".point");

@@ -14,10 +14,43 @@ struct NodeGap {
   double lower = -std::numeric_limits<double>::infinity();  // a lower bound of the gap
   bool exact = false;
   double gap = 0.0;
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  SurfacePoint surface;
 };
 
 }  // namespace
+
+LinkGap link_minimum(const PlacedShape& object, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double r_a,
+                     double r_b, const SurfacePoint& q_a, const SurfacePoint& q_b, double stop_below) {
+  LinkGap best{0.0, q_a.signed_distance - r_a, q_a};
+  if (const double gap_b = q_b.signed_distance - r_b; gap_b < best.gap) best = {1.0, gap_b, q_b};
+  if (best.gap < stop_below) return best;
+  const Eigen::Vector3d ab = b - a;
+  const double dr = r_b - r_a;
+  // d gap / d tau = n . (b - a) - (r_b - r_a): a minimum inside needs it to change sign.
+  auto derivative = [&](const Eigen::Vector3d& normal) { return normal.dot(ab) - dr; };
+  double lo = 0.0, hi = 1.0;
+  double d_lo = derivative(q_a.normal), d_hi = derivative(q_b.normal);
+  if (!(d_lo < 0.0 && d_hi > 0.0)) return best;  // the link's minimum is at an end
+  for (int it = 0; it < 60 && hi - lo > 1e-13; ++it) {
+    // Regula falsi on the derivative, bisecting when it stalls.
+    double tau = lo - d_lo * (hi - lo) / (d_hi - d_lo);
+    if (!(tau > lo + 0.01 * (hi - lo) && tau < hi - 0.01 * (hi - lo))) tau = 0.5 * (lo + hi);
+    const SurfacePoint q = object.nearest_W(a + tau * ab);
+    const double gap = q.signed_distance - (r_a + tau * dr);
+    if (gap < best.gap) best = {tau, gap, q};
+    if (gap < stop_below) return best;
+    const double d = derivative(q.normal);
+    if (d < 0.0) {
+      lo = tau;
+      d_lo = d;
+    } else {
+      hi = tau;
+      d_hi = d;
+    }
+    if (std::abs(d) * (hi - lo) < 1e-15) break;
+  }
+  return best;
+}
 
 Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> nodes, std::span<const double> arc,
                     std::span<const double> radii, double threshold, bool first_below) {
@@ -40,7 +73,7 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     const SurfacePoint q = object.nearest_W(nodes[i]);
     g[i].exact = true;
     g[i].gap = g[i].lower = q.signed_distance - radius(i);
-    g[i].normal = q.normal;
+    g[i].surface = q;
     if (g[i].gap < best.gap) best = {g[i].gap, arc[i], nodes[i], q.normal};
   };
   // Sphere tracing along the nodes: a node is queried only if its bound (from the shape's box and the last
@@ -71,32 +104,11 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     evaluate(i + 1);
     if (first_below && best.gap < threshold) return best;
     bound = std::min(bound, 0.5 * (g[i].gap + g[i + 1].gap - K * l));
-    const Eigen::Vector3d a = nodes[i], ab = nodes[i + 1] - nodes[i];
-    const double dr = radius(i + 1) - radius(i);
-    // d gap / d tau = n . (b - a) - (r_b - r_a): a minimum inside needs it to change sign.
-    auto derivative = [&](const Eigen::Vector3d& normal) { return normal.dot(ab) - dr; };
-    double lo = 0.0, hi = 1.0;
-    double d_lo = derivative(g[i].normal), d_hi = derivative(g[i + 1].normal);
-    if (!(d_lo < 0.0 && d_hi > 0.0)) continue;  // the link's minimum is at an end (evaluated)
-    for (int it = 0; it < 60 && hi - lo > 1e-13; ++it) {
-      // Regula falsi on the derivative, bisecting when it stalls.
-      double tau = lo - d_lo * (hi - lo) / (d_hi - d_lo);
-      if (!(tau > lo + 0.01 * (hi - lo) && tau < hi - 0.01 * (hi - lo))) tau = 0.5 * (lo + hi);
-      const Eigen::Vector3d p = a + tau * ab;
-      const SurfacePoint q = object.nearest_W(p);
-      const double gap = q.signed_distance - (radius(i) + tau * dr);
-      if (gap < best.gap) best = {gap, arc[i] + tau * l, p, q.normal};
-      if (first_below && gap < threshold) return best;
-      const double d = derivative(q.normal);
-      if (d < 0.0) {
-        lo = tau;
-        d_lo = d;
-      } else {
-        hi = tau;
-        d_hi = d;
-      }
-      if (std::abs(d) * (hi - lo) < 1e-15) break;
-    }
+    const LinkGap m = link_minimum(object, nodes[i], nodes[i + 1], radius(i), radius(i + 1), g[i].surface,
+                                   g[i + 1].surface, first_below ? threshold : -std::numeric_limits<double>::infinity());
+    if (m.gap < best.gap)
+      best = {m.gap, arc[i] + m.tau * l, nodes[i] + m.tau * (nodes[i + 1] - nodes[i]), m.surface.normal};
+    if (first_below && best.gap < threshold) return best;
   }
   if (best.gap >= threshold) best.gap = std::max(best.gap, threshold);
   best.lower_bound = std::min(bound, best.gap);

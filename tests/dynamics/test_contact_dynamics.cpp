@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "contact_sweeps.hpp"
 #include "vibrissa/core/pose.hpp"
 #include "vibrissa/core/whisker.hpp"
 #include "vibrissa/dynamics/chain_kinematics.hpp"
@@ -16,31 +17,13 @@
 namespace vibrissa::dynamics {
 namespace {
 
-Whisker curved_whisker(int links) {
-  WhiskerProperties p;
-  p.links = links;
-  return Whisker::from_parabola(0.03, 15.0, p);
-}
-
-/// Protraction about world z from 0 to `angle` over `duration` with zero velocity at both ends:
-/// theta(t) = angle (t / T - sin(2 pi t / T) / (2 pi)), held after T.
-BaseTrajectory smooth_sweep(double angle, double duration) {
-  return trajectory_from_placements([=](double t) {
-    const double x = std::clamp(t / duration, 0.0, 1.0);
-    Pose pose;
-    pose.theta = angle * (x - std::sin(2.0 * std::numbers::pi * x) / (2.0 * std::numbers::pi));
-    return Placement(pose);
-  });
-}
+using sweeps::curved_whisker;
+using sweeps::rest_point;
+using sweeps::smooth_sweep;
 
 /// A vertical edge (world z) `offset` [m] ahead (+y) of the rest whisker's centre line at arc length s.
 LineObstacle edge_ahead(const Whisker& w, double s, double offset, double mu) {
-  const auto& arc = w.node_arc_lengths();
-  std::size_t i = 0;
-  while (i + 2 < arc.size() && arc[i + 1] < s) ++i;
-  const double u = (s - arc[i]) / (arc[i + 1] - arc[i]);
-  const Eigen::Vector3d p = w.rest_nodes_B()[i] + u * (w.rest_nodes_B()[i + 1] - w.rest_nodes_B()[i]);
-  return line_obstacle(Edge{p + Eigen::Vector3d(0.0, offset, 0.0), Eigen::Vector3d::UnitZ()}, mu);
+  return line_obstacle(Edge{rest_point(w, s) + Eigen::Vector3d(0.0, offset, 0.0), Eigen::Vector3d::UnitZ()}, mu);
 }
 
 TEST(DynamicsChainKinematics, PointJacobianMatchesFiniteDifferencesAtLargeRotations) {

@@ -8,8 +8,15 @@
 // the whisker; an elastic-plastic stick spring of stiffness k_t holds the contact's place along the line at an
 // anchor while |F . e| <= mu |F - (F . e) e| (e the line's direction); beyond it the anchor slides (slip) with
 // the bound met, opposing the slip (docs/dynamics.md, "Contact during motion"). Events: touch, slip (onset), stick, release.
+// Surfaces (planes, spheres, finite cylinders, boxes, meshes: objects/shape.hpp) are met through the shape's own
+// query: per link of the deflected centre line the nearest approach to the surface (objects/clearance.hpp's
+// link_minimum), the same penalty and damping along the surface's normal, and friction with the frictional object
+// mode's law (docs/objects.md, "Friction"): across the whisker in the tangent plane (b = n x t), in the whole
+// tangent plane at the tip; up to two separate contact points per surface.
+#include <memory>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,6 +39,27 @@ struct LineObstacle {
 /// Throws std::invalid_argument naming the field for a non-finite point, a zero direction, a negative radius
 /// or friction coefficient.
 void validate(const LineObstacle& obstacle);
+
+/// A surface: a placed shape fixed in the world (objects/shape.hpp), met by the whisker's surface (thickness: the
+/// centre line stays r(s) from it, as the static object modes) or by its centre line.
+struct SurfaceObstacle {
+  std::shared_ptr<const Shape> shape;
+  ObjectPose X_WO;
+  bool thickness = true;
+  double friction_coefficient = 0.0;  ///< Coulomb mu, >= 0
+};
+/// Throws std::invalid_argument naming the field for a missing shape, thickness off on a shape with edges (box,
+/// mesh), a negative or non-finite friction coefficient.
+void validate(const SurfaceObstacle& obstacle);
+
+/// An object in motion: a line (the fast path: pegs, edges) or a surface.
+using Obstacle = std::variant<LineObstacle, SurfaceObstacle>;
+void validate(const Obstacle& obstacle);
+double friction_coefficient(const Obstacle& obstacle);
+
+/// A placed shape in motion with friction `mu`: a line object if it has a line core (an infinite cylinder: a peg),
+/// else a surface.
+Obstacle obstacle(std::shared_ptr<const Shape> shape, const ObjectPose& X_WO, bool thickness, double mu);
 
 /// An edge (solve_edge's, centre line touches it) with friction `mu`.
 LineObstacle line_obstacle(const Edge& edge, double mu);

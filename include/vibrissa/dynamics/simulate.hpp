@@ -49,7 +49,7 @@ struct SimulationOptions {
   bool record_nodes = true;           ///< node positions per frame (3(N+1) doubles a frame)
   ChainModel model = ChainModel::automatic;
   /// Objects the whisker may touch (contact.hpp); they need the nonlinear chain.
-  std::vector<LineObstacle> objects;
+  std::vector<Obstacle> objects;
   ContactLaw contact;
   /// Modes integrated by the nonlinear chain (the contact path): the lowest `modes`, the others following their
   /// load statically (residual flexibility; docs/dynamics.md, "Modal truncation"); 0 or >= 3N: all (exact).

@@ -22,6 +22,19 @@ struct Clearance {
   double lower_bound = -std::numeric_limits<double>::infinity();
 };
 
+/// The smallest gap found along one link from a_W to b_W (radii r_a, r_b at its ends; 0 for the centre line),
+/// given the queries at its ends: where the gap's slope n . (b - a) - (r_b - r_a) turns from negative to positive
+/// along it, its minimum inside by regula falsi on the slope (exact for convex shapes; a local minimum on a mesh),
+/// else the smaller end. `stop_below`: returns at the first point found with a gap below it.
+struct LinkGap {
+  double tau = 0.0;                                       ///< where along the link (0: a, 1: b)
+  double gap = std::numeric_limits<double>::infinity();   ///< [m]
+  SurfacePoint surface;                                   ///< the query there (world frame)
+};
+LinkGap link_minimum(const PlacedShape& object, const Eigen::Vector3d& a_W, const Eigen::Vector3d& b_W, double r_a,
+                     double r_b, const SurfacePoint& q_a, const SurfacePoint& q_b,
+                     double stop_below = -std::numeric_limits<double>::infinity());
+
 /// The smallest gap of the polyline `nodes_W` (arc lengths `arc`, radii `radii` or none) to the placed shape, if
 /// it is below `threshold`: links that cannot come below it are skipped (the signed distance changes no faster
 /// than the distance moved, so a node's gap bounds its neighbourhood; the shape's bounds bound the rest); on each
