@@ -33,22 +33,34 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     longest = std::max(longest, (nodes[i + 1] - nodes[i]).norm());
   }
   const double K = 1.0 + slope;
+  // The signed distance and the world normal (nearest_W's, without turning what a clearance does not use).
+  struct Gap {
+    double distance;
+    Eigen::Vector3d normal_W;
+  };
+  auto query = [&object](const Eigen::Vector3d& p_W) {
+    const SurfacePoint q = object.shape->nearest(object.X_WO.to_object(p_W));
+    return Gap{q.signed_distance, object.X_WO.R_WO * q.normal};
+  };
   thread_local std::vector<NodeGap> g;
   g.assign(n, NodeGap{});
   auto evaluate = [&](std::size_t i) {
     if (g[i].exact) return;
-    const SurfacePoint q = object.nearest_W(nodes[i]);
+    const Gap q = query(nodes[i]);
     g[i].exact = true;
-    g[i].gap = g[i].lower = q.signed_distance - radius(i);
-    g[i].normal = q.normal;
-    if (g[i].gap < best.gap) best = {g[i].gap, arc[i], nodes[i], q.normal};
+    g[i].gap = g[i].lower = q.distance - radius(i);
+    g[i].normal = q.normal_W;
+    if (g[i].gap < best.gap) best = {g[i].gap, arc[i], nodes[i], q.normal_W};
   };
+  // The shape's box (none for unbounded shapes: a distance of 0 to it, as Bounds::distance gives).
+  const Bounds box = object.shape->bounds();
+  const bool bounded = box.lower.array().isFinite().any() || box.upper.array().isFinite().any();
   // Sphere tracing along the nodes: a node is queried only if its bound (from the shape's box and the last
   // queried node) lets a neighbouring link come below the threshold.
   double last_gap = -std::numeric_limits<double>::infinity();  // no node queried yet: no bound from it
   double last_arc = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double from_box = object.bound_distance_W(nodes[i]) - radius(i);
+    const double from_box = (bounded ? box.distance(object.X_WO.to_object(nodes[i])) : 0.0) - radius(i);
     const double from_last = last_gap - K * (arc[i] - last_arc);
     g[i].lower = std::max(from_box, from_last);
     if (!(g[i].lower >= threshold + K * longest)) {  // (an infinite threshold: every node)
@@ -83,11 +95,11 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
       double tau = lo - d_lo * (hi - lo) / (d_hi - d_lo);
       if (!(tau > lo + 0.01 * (hi - lo) && tau < hi - 0.01 * (hi - lo))) tau = 0.5 * (lo + hi);
       const Eigen::Vector3d p = a + tau * ab;
-      const SurfacePoint q = object.nearest_W(p);
-      const double gap = q.signed_distance - (radius(i) + tau * dr);
-      if (gap < best.gap) best = {gap, arc[i] + tau * l, p, q.normal};
+      const Gap q = query(p);
+      const double gap = q.distance - (radius(i) + tau * dr);
+      if (gap < best.gap) best = {gap, arc[i] + tau * l, p, q.normal_W};
       if (first_below && gap < threshold) return best;
-      const double d = derivative(q.normal);
+      const double d = derivative(q.normal_W);
       if (d < 0.0) {
         lo = tau;
         d_lo = d;
