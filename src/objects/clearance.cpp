@@ -14,7 +14,6 @@ struct NodeGap {
   double lower = -std::numeric_limits<double>::infinity();  // a lower bound of the gap
   bool exact = false;
   double gap = 0.0;
-  SurfacePoint surface;
 };
 
 }  // namespace
@@ -68,12 +67,17 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
   const double K = 1.0 + slope;
   thread_local std::vector<NodeGap> g;
   g.assign(n, NodeGap{});
+  thread_local std::vector<SurfacePoint> surface;  // the queries of the nodes evaluated (g[i].exact)
+  if (surface.size() < n) surface.resize(n);
   auto evaluate = [&](std::size_t i) {
     if (g[i].exact) return;
-    const SurfacePoint q = object.nearest_W(nodes[i]);
+    // The node's query with only what this function and link_minimum() read turned into the world: the signed
+    // distance and the normal (nearest_W() also turns the closest point, the normal's derivative and the edge).
+    SurfacePoint q = object.shape->nearest(object.X_WO.to_object(nodes[i]));
+    q.normal = object.X_WO.R_WO * q.normal;
     g[i].exact = true;
     g[i].gap = g[i].lower = q.signed_distance - radius(i);
-    g[i].surface = q;
+    surface[i] = q;
     if (g[i].gap < best.gap) best = {g[i].gap, arc[i], nodes[i], q.normal};
   };
   // The shape's box (none for unbounded shapes: a distance of 0 to it, as Bounds::distance gives).
@@ -107,8 +111,8 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     evaluate(i + 1);
     if (first_below && best.gap < threshold) return best;
     bound = std::min(bound, 0.5 * (g[i].gap + g[i + 1].gap - K * l));
-    const LinkGap m = link_minimum(object, nodes[i], nodes[i + 1], radius(i), radius(i + 1), g[i].surface,
-                                   g[i + 1].surface, first_below ? threshold : -std::numeric_limits<double>::infinity());
+    const LinkGap m = link_minimum(object, nodes[i], nodes[i + 1], radius(i), radius(i + 1), surface[i],
+                                   surface[i + 1], first_below ? threshold : -std::numeric_limits<double>::infinity());
     if (m.gap < best.gap)
       best = {m.gap, arc[i] + m.tau * l, nodes[i] + m.tau * (nodes[i + 1] - nodes[i]), m.surface.normal};
     if (first_below && best.gap < threshold) return best;
