@@ -191,6 +191,7 @@ void run_dynamics(const SimulationConfig& c, const Prepared& prep, ArrayResult& 
   const bool render_run = p == static_cast<std::size_t>(c.render_pitch);
   o.record_nodes = render_run && !c.render_frames.empty();
   o.objects = prep.obstacles[p];
+  o.modes = props.modes;
   const dynamics::LinearModel model = dynamics::linear_model(rest, props);
   const dynamics::Modes all = dynamics::modes(model, rest);
   const dynamics::TimeSeries ts = dynamics::simulate(

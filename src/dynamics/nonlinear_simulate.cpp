@@ -15,8 +15,8 @@
 // stage's f of the step before). The two implicit stages share the diagonal coefficient d, so their Newton matrices
 // are the same: each is solved by Newton's method on the stage's modal rates; the contacts make the Newton matrix
 // diag + a rank-3 term per contact (Woodbury). Error control (step_control.hpp) by the embedded third-order
-// estimate, filtered through the Newton matrix (stiff components count by their damped response). With friction
-// on any object: Alexander's two-stage SDIRK (same order, all stages implicit) with step doubling (run()).
+// estimate, filtered through the Newton matrix (stiff components count by their damped response). Where a contact
+// flickers: Alexander's two-stage SDIRK (same order, all stages implicit) with step doubling (run()).
 #include "nonlinear_simulate.hpp"
 #include "step_control.hpp"
 #include "surface_contact.hpp"
@@ -45,8 +45,8 @@ namespace {
 // embedded third-order weights b^ = ((1 - w) / 3, (3w + 1) / 3, d / 3).
 const double d_trbdf2 = 1.0 - 1.0 / std::sqrt(2.0);
 const double w_trbdf2 = std::sqrt(2.0) / 4.0;
-// With friction: Alexander's two-stage SDIRK (gamma = 1 - 1/sqrt 2; L-stable, stiffly accurate, order 2), step
-// doubling (see step_sdirk2).
+// Where a contact flickers: Alexander's two-stage SDIRK (gamma = 1 - 1/sqrt 2; L-stable, stiffly accurate,
+// order 2), step doubling (see step_sdirk2).
 const double gamma_sdirk2 = 1.0 - 1.0 / std::sqrt(2.0);
 
 /// One contact's evaluation at a stage.
@@ -73,17 +73,30 @@ struct State {
 struct Frame {
   BaseMotion base;
   Eigen::VectorXd modal_input;
+  Eigen::VectorXd static_q;  ///< with a truncated basis: the residual modes' static response R G u(t) (else empty)
 };
 
 class Integrator {
  public:
   Integrator(const Whisker& w, const LinearModel& model, const Modes& modes, const BaseTrajectory& base,
              const Eigen::Vector3d& gravity_W, const SimulationOptions& opt)
-      : w_(w), model_(model), Phi_(modes.joint_shapes), base_(base), gravity_(gravity_W), opt_(opt) {
-    k_ = modes.omega.cwiseProduct(modes.omega);
-    c_ = 2.0 * modes.damping_ratio.cwiseProduct(modes.omega);
+      : w_(w), model_(model), base_(base), gravity_(gravity_W), opt_(opt) {
+    const Eigen::Index all = modes.joint_shapes.cols();
+    m_ = opt.modes > 0 ? std::min<Eigen::Index>(opt.modes, all) : all;
+    truncated_ = m_ < all;
+    Phi_ = modes.joint_shapes.leftCols(m_);
+    k_ = modes.omega.head(m_).cwiseProduct(modes.omega.head(m_));
+    c_ = 2.0 * modes.damping_ratio.head(m_).cwiseProduct(modes.omega.head(m_));
     P_ = Phi_.transpose() * model.input;
-    m_ = Phi_.cols();
+    if (truncated_) {
+      // The residual flexibility R = K^-1 - Phi_m k^-1 Phi_m^T (K block diagonal: K^-1 by blocks, O(N m) products)
+      // and the residual modes' static response to the base input, R G (3N x 12).
+      const Eigen::Index joints = model.size() / 3;
+      K_inv_.resize(static_cast<std::size_t>(joints));
+      for (Eigen::Index j = 0; j < joints; ++j)
+        K_inv_[static_cast<std::size_t>(j)] = model.stiffness.block<3, 3>(3 * j, 3 * j).inverse();
+      static_input_ = apply_K_inv(model.input) - Phi_ * (P_.array().colwise() / k_.array()).matrix();
+    }
     kn_ = opt.contact.stiffness;
     kt_ = opt.contact.tangential_stiffness > 0.0 ? opt.contact.tangential_stiffness : kn_;
     // Contact slots: the line objects' first (one each, indexed as objects_), then the surfaces' (surface_slots
@@ -101,15 +114,38 @@ class Integrator {
         for (std::size_t j = 0; j < surface_slots; ++j) object_of_.push_back(k);
       }
     slots_ = object_of_.size();
-    friction_ = std::any_of(opt.objects.begin(), opt.objects.end(),
-                            [](const Obstacle& o) { return friction_coefficient(o) > 0.0; });
   }
 
   Frame frame(double t) const {
     Frame f;
     f.base = base_(t);
-    f.modal_input = P_ * base_input(f.base, gravity_);
+    const Eigen::Matrix<double, base_input_size, 1> u = base_input(f.base, gravity_);
+    f.modal_input = P_ * u;
+    if (truncated_) f.static_q = static_input_ * u;
     return f;
+  }
+
+  /// K^-1 X, block by block.
+  Eigen::MatrixXd apply_K_inv(const Eigen::MatrixXd& X) const {
+    Eigen::MatrixXd out(X.rows(), X.cols());
+    for (std::size_t j = 0; j < K_inv_.size(); ++j)
+      out.middleRows<3>(3 * static_cast<Eigen::Index>(j)).noalias() =
+          K_inv_[j] * X.middleRows<3>(3 * static_cast<Eigen::Index>(j));
+    return out;
+  }
+
+  /// The joint coordinates of a state: Phi_m eta, and with a truncated basis the residual modes' static response
+  /// to the base input and the contact forces, R (G u + sum J^T F) (docs/dynamics.md, "Modal truncation").
+  const Eigen::VectorXd& joint_coordinates(const Frame& f, const State& s) {
+    q_.noalias() = Phi_ * s.eta;
+    if (!truncated_) return q_;
+    q_ += f.static_q;
+    chain_kinematics(w_, q_, kin_);
+    Eigen::VectorXd Q = Eigen::VectorXd::Zero(q_.size());
+    for (const ContactValue& cv : s.contacts)
+      if (cv.state != ContactState::none) add_generalized_force(kin_, cv.link, cv.x_B, cv.force_B, Q);
+    q_ += apply_K_inv(Q) - Phi_ * (Phi_.transpose() * Q).cwiseQuotient(k_);
+    return q_;
   }
 
   double energy_norm(const Eigen::VectorXd& eta, const Eigen::VectorXd& rate) const {
@@ -122,6 +158,7 @@ class Integrator {
                          Eigen::VectorXd& modal_force, std::vector<Eigen::MatrixXd>* U,
                          const std::vector<ContactState>* frozen = nullptr) {
     q_.noalias() = Phi_ * eta;
+    if (truncated_) q_ += f.static_q;
     chain_kinematics(w_, q_, kin_);
     deep_crossing_ = false;
     // Newton's held surface contacts stay near the links of the iteration before (`out` holds it).
@@ -212,14 +249,35 @@ class Integrator {
         const std::size_t u = static_cast<std::size_t>(j);
         Jt_.middleRows<3>(3 * j) = kin_.joint_axes_B[u].transpose() * skew(cv.x_B - kin_.nodes_B[u]);
       }
-      Eigen::MatrixXd Ui(m_, 3);  // Phi^T J^T: three matrix-vector products with the first 3 (link + 1) rows of Phi
-      for (Eigen::Index k = 0; k < 3; ++k) Ui.col(k).noalias() = Phi_.topRows(joints).transpose() * Jt_.col(k);
+      // Phi^T J^T with the first 3 (link + 1) rows of Phi, mode by mode: the three dot products of a mode's column
+      // read it from memory once (three matrix-vector products read Phi three times).
+      Eigen::MatrixXd Ui(m_, 3);
+      for (Eigen::Index k = 0; k < m_; ++k) {
+        const auto col = Phi_.col(k).head(joints);
+        Ui(k, 0) = col.dot(Jt_.col(0));
+        Ui(k, 1) = col.dot(Jt_.col(1));
+        Ui(k, 2) = col.dot(Jt_.col(2));
+      }
       // The contact point's velocity in B: the base's, plus J q' = (Phi^T J^T)^T eta'.
       const Eigen::Vector3d v_B =
           R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + Ui.transpose() * rate;
-      // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n.
+      // With a truncated basis the residual modes follow the force statically: the contact point gives way by
+      // C F, C = J R J^T = sum_j J_j^T K_j^-1 J_j - (Phi_m^T J^T)^T k^-1 (Phi_m^T J^T), in series with the law.
+      Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+      if (truncated_) {
+        for (int j = 0; j <= cv.link; ++j) {
+          const auto Jj = Jt_.middleRows<3>(3 * j);
+          C.noalias() += Jj.transpose() * K_inv_[static_cast<std::size_t>(j)] * Jj;
+        }
+        C.noalias() -= Ui.transpose() * (Ui.array().colwise() / k_.array()).matrix();
+      }
+      // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n, for the
+      // stiffness k_n in series with the residual compliance n^T C n (the series law scales the force by
+      // 1 / (1 + k_n n^T C n), so the damper is taken that much larger).
       const double inv_mass = (Ui * n).squaredNorm();
-      const double cn = 2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / std::max(inv_mass, 1e-300));
+      const double series_n = 1.0 + kn_ * std::max(0.0, n.dot(C * n));
+      const double cn =
+          2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / series_n / std::max(inv_mass, 1e-300)) * series_n;
       const double gap_rate = n.dot(v_B);
       const double fn_raw = -kn_ * cv.gap - cn * gap_rate;
       const double fn = frozen_on ? fn_raw : std::max(0.0, fn_raw);
@@ -254,7 +312,9 @@ class Integrator {
         const double cone = c_line * c_line - mu * mu * (1.0 - c_line * c_line);
         const double ratio = cone > 0.0 ? mu / std::sqrt(cone) : std::numeric_limits<double>::infinity();
         const double limit = ratio * fn;
-        const double ct = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * b).squaredNorm(), 1e-300));
+        const double series_t = 1.0 + kt_ * std::max(0.0, b.dot(C * b));
+        const double ct = 2.0 * opt_.contact.damping_ratio *
+                          std::sqrt(kt_ / series_t / std::max((Ui * b).squaredNorm(), 1e-300)) * series_t;
         const double spring = -kt_ * c_line * (lambda - cv.anchor), damper = -ct * b.dot(v_B);
         const ContactState keep = frozen ? (*frozen)[o] : ContactState::none;
         const bool stick = keep != ContactState::none ? keep == ContactState::stick && frictional
@@ -289,6 +349,18 @@ class Integrator {
         continue;
       }
       cv.force_B = fn * n + ft * b;
+      if (truncated_) {
+        // The law at x + C F, linear in x within its branch: F = (I - S_x C)^-1 F_0, and so its derivatives. The
+        // contact point and gap reported are those of the given-way point.
+        const Eigen::Matrix3d A = (Eigen::Matrix3d::Identity() - cv.S_x * C).inverse();
+        cv.force_B = A * cv.force_B;
+        cv.S_x = A * cv.S_x;
+        cv.S_v = A * cv.S_v;
+        const Eigen::Vector3d give = C * cv.force_B;
+        cv.x_B += give;
+        cv.gap += n.dot(give);
+        cv.point_W = f.base.p_W_base + R * cv.x_B;
+      }
       cv.force_W = R * cv.force_B;
       modal_force.noalias() += Ui * cv.force_B;
       if (U) (*U)[o] = std::move(Ui);
@@ -483,8 +555,14 @@ class Integrator {
         return !deep_crossing_;  // no contact: exact
       }
       const Eigen::VectorXd delta = -solve_newton(D, g, out.contacts, U, r);
-      Y += delta;
       const double step = std::sqrt(k_.dot((g * delta).cwiseProduct(g * delta)) + delta.squaredNorm());
+      if (step <= 1e-3 * tol && it < 3) {
+        // Y solves the stage to within the correction's size (1e-3 of the tolerance), and this evaluation decided
+        // the contact set afresh (not frozen): Y is the solution, with this evaluation (no further one).
+        if (U_out) *U_out = std::move(U);
+        return !deep_crossing_;
+      }
+      Y += delta;
       if (step <= 1e-3 * tol) {
         out.eta = A_eta + g * Y;
         out.rate = Y;
@@ -495,7 +573,7 @@ class Integrator {
     return false;
   }
 
-  /// One step of Alexander's SDIRK2 of length h from (t, y) (the objects have friction: see run()).
+  /// One step of Alexander's SDIRK2 of length h from (t, y) (a contact flickers: see run()).
   bool step_sdirk2(double t, double h, const State& y, double tol, State& out) {
     const double g = gamma_sdirk2 * h;
     State Y1;
@@ -593,16 +671,15 @@ class Integrator {
     record(ts, 0, 0.0, y);
 
     double scale = energy_norm(y.eta, y.rate);
-    // Frictionless: TR-BDF2 with its embedded estimate. With friction: SDIRK2 with step doubling (each step also
-    // taken as two halves, which are kept; their difference / 3 estimates their error), three times the stage
-    // solves: at the slip -> stick transition TR-BDF2's explicit first stage flips the elastic-plastic state back
-    // and forth (docs/dynamics.md, "Integrator").
-    // A contact that flickers (touch and release again and again within a millisecond, as where a frictionless
-    // contact grazes the short, light links near the tip: TR-BDF2's trapezoidal stage leaves an alternating
-    // response in that very stiff contact) switches to SDIRK2, which passes it as one release, until no object
-    // has been touched for a millisecond (bench_dynamics' peg: 3,509 events with TR-BDF2 alone, 21 with SDIRK2).
-    const bool friction = friction_;
-    bool sdirk2 = friction, step_sdirk2_used = friction;
+    // TR-BDF2 with its embedded estimate. A contact that flickers (six touches, releases, slip onsets or sticks
+    // within a millisecond: a frictionless contact grazing the short, light links near the tip, where TR-BDF2's
+    // trapezoidal stage leaves an alternating response in that very stiff contact; a frictional one at a slip ->
+    // stick transition, where the elastic-plastic state decided on the explicit first stage's side flips back and
+    // forth) switches to SDIRK2 with step doubling (each step also taken as two halves, which are kept; their
+    // difference / 3 estimates their error), which passes it as one transition, until no object has been touched
+    // for a millisecond (bench_dynamics' peg: 3,509 events with TR-BDF2 alone, 21 with SDIRK2; docs/dynamics.md,
+    // "Integrator").
+    bool sdirk2 = false, step_sdirk2_used = false;
     constexpr std::size_t flicker_events = 6;
     constexpr double flicker_window = 1e-3;  // [s]
     double last_touched = 0.0;
@@ -636,7 +713,7 @@ class Integrator {
           if (std::any_of(next.contacts.begin(), next.contacts.end(),
                           [](const ContactValue& c) { return c.state != ContactState::none; }))
             last_touched = t + h;
-          else if (sdirk2 && !friction && t + h - last_touched > flicker_window)
+          else if (sdirk2 && t + h - last_touched > flicker_window)
             sdirk2 = false;
           y = next;
           scale = std::max(scale, energy_norm(y.eta, y.rate));
@@ -678,10 +755,13 @@ class Integrator {
         ts.events.push_back(event(crossing(), ContactEventType::release, o, p));
       }
       if (friction_coefficient(opt_.objects[object_of_[o]]) > 0.0 && is) {
-        if (c.state == ContactState::slip && p.state != ContactState::slip)
+        if (c.state == ContactState::slip && p.state != ContactState::slip) {
+          transitions_.push_back(t0 + h);
           ts.events.push_back(event(t0 + h, ContactEventType::slip, o, c));
-        else if (c.state == ContactState::stick && p.state == ContactState::slip)
+        } else if (c.state == ContactState::stick && p.state == ContactState::slip) {
+          transitions_.push_back(t0 + h);
           ts.events.push_back(event(t0 + h, ContactEventType::stick, o, c));
+        }
       }
     }
   }
@@ -701,11 +781,15 @@ class Integrator {
     ts.moment_B.push_back(wrench.tail<3>());
     ts.force_W.push_back(b.R_WB * wrench.head<3>());
     ts.moment_W.push_back(b.R_WB * wrench.tail<3>());
-    q_.noalias() = Phi_ * s.eta;
-    ts.q.col(f) = q_;
+    ts.q.col(f) = joint_coordinates(fr, s);
     chain_kinematics(w_, q_, kin_);
     ts.kinetic_energy.push_back(0.5 * s.rate.squaredNorm());
-    ts.elastic_energy.push_back(0.5 * k_.dot(s.eta.cwiseProduct(s.eta)));
+    double elastic = 0.5 * k_.dot(s.eta.cwiseProduct(s.eta));
+    if (truncated_) {  // the static part is K-orthogonal to the modes kept
+      const Eigen::VectorXd q_static = q_ - Phi_ * s.eta;
+      elastic += 0.5 * q_static.dot(model_.stiffness * q_static);
+    }
+    ts.elastic_energy.push_back(elastic);
     const std::size_t N = kin_.nodes_B.size() - 1;
     ts.tip_displacement_B.push_back(kin_.nodes_B[N] - w_.rest_nodes_B()[N]);
     const Placement X(b.R_WB, b.p_W_base);
@@ -739,13 +823,16 @@ class Integrator {
 
   const Whisker& w_;
   const LinearModel& model_;
-  const Eigen::MatrixXd& Phi_;
+  Eigen::MatrixXd Phi_;  ///< the modes integrated (the lowest m_ of the model's)
   const BaseTrajectory& base_;
   Eigen::Vector3d gravity_;
   const SimulationOptions& opt_;
   Eigen::VectorXd k_, c_;
   Eigen::MatrixXd P_;
   Eigen::Index m_ = 0;
+  bool truncated_ = false;               ///< fewer modes than coordinates: static correction (R below)
+  std::vector<Eigen::Matrix3d> K_inv_;   ///< the joints' compliances (truncated basis only)
+  Eigen::MatrixXd static_input_;         ///< R G (truncated basis only)
   double kn_ = 0.0, kt_ = 0.0;
   bool deep_crossing_ = false;  ///< the last evaluation found a line crossed deeper than kMaxCrossing
   std::vector<LineObstacle> objects_;           ///< the line objects (the first slots)
@@ -753,7 +840,6 @@ class Integrator {
   static constexpr std::size_t surface_slots = 2;  ///< contact points per surface
   std::vector<std::size_t> object_of_;          ///< slot -> index into SimulationOptions::objects
   std::size_t slots_ = 0;
-  bool friction_ = false;                       ///< any object has friction
   std::vector<int> hold_link_;                  ///< per slot: the link a held surface contact stays near (-1: none)
   std::vector<Eigen::Vector3d> nodes_W_;
   std::vector<double> transitions_;  ///< times of every touch and release, reported or not (the flicker switch)

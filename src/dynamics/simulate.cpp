@@ -94,6 +94,7 @@ void validate(const SimulationOptions& o) {
                                 format_value(o.absolute_tolerance));
   if (!(std::isfinite(o.max_step) && o.max_step >= 0.0))
     throw std::invalid_argument("max_step must be >= 0 and finite [s], got " + format_value(o.max_step));
+  if (o.modes < 0) throw std::invalid_argument("modes must be >= 0 (0: all), got " + std::to_string(o.modes));
   if (o.max_steps < 1) throw std::invalid_argument("max_steps must be >= 1, got " + std::to_string(o.max_steps));
   if (o.duration * o.output_rate + 1.0 > static_cast<double>(limits::max_array_frames))
     throw std::invalid_argument("duration * output_rate must give at most " +

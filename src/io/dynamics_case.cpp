@@ -60,7 +60,16 @@ dynamics::BaseTrajectory whisking_trajectory(const Pose& pose, const Whisking& w
 dynamics::DynamicsProperties dynamics_properties_from_json(const json& d) {
   dynamics::DynamicsProperties props;
   only_keys(d, "dynamics", {"density", "damping_ratio", "joint_damping_time", "gravity", "air_drag", "air_density",
-                            "air_kinematic_viscosity"});
+                            "air_kinematic_viscosity", "modes"});
+  if (d.contains("modes")) {
+    const json& m = d.at("modes");
+    if (m.is_string()) {
+      if (m.get<std::string>() != "all")
+        fail("dynamics.modes must be \"all\" or a count >= 1, got " + quote_text(m.get<std::string>()));
+    } else {
+      props.modes = json_integer(m, "dynamics.modes", 1, 100000);
+    }
+  }
   if (d.contains("air_drag")) {
     if (!d.at("air_drag").is_boolean()) fail("dynamics.air_drag must be true or false, got " + describe(d.at("air_drag")));
     props.air_drag = d.at("air_drag").get<bool>();
@@ -187,6 +196,7 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
   c.options.output_rate = number_or(j, "output_rate", "", c.options.output_rate);
   c.options.relative_tolerance = number_or(j, "relative_tolerance", "", c.options.relative_tolerance);
   c.options.absolute_tolerance = number_or(j, "absolute_tolerance", "", c.options.absolute_tolerance);
+  c.options.modes = c.properties.modes;
   dynamics::validate(c.options);
   if (j.contains("modes")) c.mode_count = json_integer(j.at("modes"), "modes", 1, 100000);
   if (j.contains("load")) {

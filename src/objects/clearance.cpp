@@ -76,12 +76,15 @@ Clearance clearance(const PlacedShape& object, std::span<const Eigen::Vector3d> 
     g[i].surface = q;
     if (g[i].gap < best.gap) best = {g[i].gap, arc[i], nodes[i], q.normal};
   };
+  // The shape's box (none for unbounded shapes: a distance of 0 to it, as Bounds::distance gives).
+  const Bounds box = object.shape->bounds();
+  const bool bounded = box.lower.array().isFinite().any() || box.upper.array().isFinite().any();
   // Sphere tracing along the nodes: a node is queried only if its bound (from the shape's box and the last
   // queried node) lets a neighbouring link come below the threshold.
   double last_gap = -std::numeric_limits<double>::infinity();  // no node queried yet: no bound from it
   double last_arc = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double from_box = object.bound_distance_W(nodes[i]) - radius(i);
+    const double from_box = (bounded ? box.distance(object.X_WO.to_object(nodes[i])) : 0.0) - radius(i);
     const double from_last = last_gap - K * (arc[i] - last_arc);
     g[i].lower = std::max(from_box, from_last);
     if (!(g[i].lower >= threshold + K * longest)) {  // (an infinite threshold: every node)

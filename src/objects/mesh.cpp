@@ -8,7 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
+#include <limits>
 #include <map>
+#include <optional>
 #include <numbers>
 #include <unordered_map>
 
@@ -161,8 +164,11 @@ Mesh::~Mesh() = default;
 
 SurfacePoint Mesh::nearest(const Eigen::Vector3d& p) const {
   const auto hit = tree_->tree.closest_point_and_primitive(Tree::K::Point_3(p.x(), p.y(), p.z()));
-  const Eigen::Vector3d q(hit.first.x(), hit.first.y(), hit.first.z());
-  const auto f = static_cast<std::size_t>(hit.second - tree_->triangles.cbegin());
+  return on_triangle(p, Eigen::Vector3d(hit.first.x(), hit.first.y(), hit.first.z()),
+                     static_cast<std::size_t>(hit.second - tree_->triangles.cbegin()));
+}
+
+SurfacePoint Mesh::on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::size_t f) const {
   const auto& tri = triangles_[f];
   const Eigen::Vector3d &a = vertices_[tri[0]], &b = vertices_[tri[1]], &c = vertices_[tri[2]];
   // Barycentric coordinates of q: which feature of the triangle holds it.
@@ -182,6 +188,134 @@ SurfacePoint Mesh::nearest(const Eigen::Vector3d& p) const {
   }
   const int code = zeros == 0 ? 0 : zeros == 1 ? 1 + zero : 4 + nonzero;
   return feature_point(p, q, f, code);
+}
+
+// A solve's queries gather about its contacts: the triangles near each place, gathered once from the tree (a box
+// query about the first point asked there within the margin of the surface, reaching twice the margin farther),
+// answer them with a loop over about a hundred; a query
+// whose nearest candidate is farther than its box's boundary (a triangle outside the box might be nearer) goes to
+// the tree. Every answer is the nearest triangle's, as the tree's; among triangles at the same distance (a shared
+// edge or vertex: the same feature and normal) the candidates take the first in the mesh's order, the tree the
+// first it visits: feature_id may name the other triangle of the same edge.
+class Mesh::Neighbourhood final : public Shape {
+ public:
+  Neighbourhood(const Mesh& mesh, double margin) : Shape("mesh"), mesh_(mesh), margin_(margin) {}
+  [[nodiscard]] SurfacePoint nearest(const Eigen::Vector3d& p) const override {
+    if (asked_ && p == last_p_) return last_;  // the checks ask at the same points again
+    last_ = answer(p);
+    last_p_ = p;
+    asked_ = true;
+    return last_;
+  }
+  [[nodiscard]] SurfacePoint nearest_on_feature(const Eigen::Vector3d& p, std::int64_t feature_id) const override {
+    return mesh_.nearest_on_feature(p, feature_id);
+  }
+  [[nodiscard]] Bounds bounds() const override { return mesh_.bounds(); }
+  [[nodiscard]] bool needs_thickness() const override { return true; }
+  [[nodiscard]] ShapeDescription describe() const override { return mesh_.describe(); }
+
+ private:
+  /// Places a solve gathers triangles about (a contact, a second contact, the steps of a continuation); beyond
+  /// them the tree answers.
+  static constexpr std::size_t max_regions = 16;
+  struct Candidate {
+    Eigen::Vector3d centre;  // of a sphere holding the triangle
+    double radius;
+    std::size_t f;
+  };
+  struct Region {
+    Eigen::Vector3d lower, upper;  // the box: every triangle meeting it is a candidate
+    std::vector<Candidate> candidates;  // in the mesh's order
+    std::size_t hint = 0;  // the candidate nearest to the last point answered here
+  };
+
+  [[nodiscard]] SurfacePoint from_tree(const Eigen::Vector3d& p, double& distance) const {
+    const auto hit = mesh_.tree_->tree.closest_point_and_primitive(Tree::K::Point_3(p.x(), p.y(), p.z()));
+    const Eigen::Vector3d q(hit.first.x(), hit.first.y(), hit.first.z());
+    distance = (p - q).norm();
+    return mesh_.on_triangle(p, q, static_cast<std::size_t>(hit.second - mesh_.tree_->triangles.cbegin()));
+  }
+
+  /// The box [p - h, p + h] (h: p's distance to the surface and twice the margin) and the triangles meeting it.
+  void gather(const Eigen::Vector3d& p, double distance) const {
+    Region r;
+    const double h = distance + 2.0 * margin_;
+    r.lower = p.array() - h;
+    r.upper = p.array() + h;
+    std::vector<Tree::Triangles::const_iterator> hits;
+    mesh_.tree_->tree.all_intersected_primitives(
+        CGAL::Bbox_3(r.lower.x(), r.lower.y(), r.lower.z(), r.upper.x(), r.upper.y(), r.upper.z()),
+        std::back_inserter(hits));
+    for (const auto& it : hits) {
+      const auto f = static_cast<std::size_t>(it - mesh_.tree_->triangles.cbegin());
+      const auto& tri = mesh_.triangles_[f];
+      const Eigen::Vector3d centre = (mesh_.vertices_[tri[0]] + mesh_.vertices_[tri[1]] + mesh_.vertices_[tri[2]]) / 3.0;
+      double radius = 0.0;
+      for (int k : tri) radius = std::max(radius, (mesh_.vertices_[k] - centre).norm());
+      r.candidates.push_back({centre, radius * (1.0 + 1e-12), f});
+    }
+    std::sort(r.candidates.begin(), r.candidates.end(), [](const Candidate& a, const Candidate& b) { return a.f < b.f; });
+    last_region_ = regions_.size();
+    regions_.push_back(std::move(r));
+  }
+
+  /// The answer from region r's candidates, if no triangle outside it can be nearer.
+  [[nodiscard]] std::optional<SurfacePoint> from_region(const Eigen::Vector3d& p, Region& r) const {
+    // How far p is inside the box: no triangle outside it is nearer than that.
+    const double room = std::min((p - r.lower).minCoeff(), (r.upper - p).minCoeff());
+    if (!(room > 0.0) || r.candidates.empty()) return std::nullopt;
+    const Tree::K::Point_3 point(p.x(), p.y(), p.z());
+    const Tree::K::Construct_projected_point_3 project;
+    double best2 = std::numeric_limits<double>::infinity(), best = best2;
+    std::size_t best_at = 0;
+    Tree::K::Point_3 best_q(0.0, 0.0, 0.0);
+    auto consider = [&](std::size_t k) {
+      const Candidate& c = r.candidates[k];
+      const double reach = best + c.radius;
+      if ((p - c.centre).squaredNorm() > reach * reach) return;
+      const Tree::K::Point_3 q = project(mesh_.tree_->triangles[c.f], point);
+      const double d2 = CGAL::squared_distance(point, q);
+      if (d2 < best2 || (d2 == best2 && k < best_at)) {
+        best2 = d2;
+        best = std::sqrt(d2);
+        best_at = k;
+        best_q = q;
+      }
+    };
+    consider(std::min(r.hint, r.candidates.size() - 1));  // usually the nearest: it culls the rest
+    for (std::size_t k = 0; k < r.candidates.size(); ++k) consider(k);
+    if (!(best <= room)) return std::nullopt;
+    r.hint = best_at;
+    return mesh_.on_triangle(p, Eigen::Vector3d(best_q.x(), best_q.y(), best_q.z()), r.candidates[best_at].f);
+  }
+
+  [[nodiscard]] SurfacePoint answer(const Eigen::Vector3d& p) const {
+    if (last_region_ < regions_.size())
+      if (auto q = from_region(p, regions_[last_region_])) return *q;
+    for (std::size_t k = 0; k < regions_.size(); ++k) {
+      if (k == last_region_) continue;
+      if (auto q = from_region(p, regions_[k])) {
+        last_region_ = k;
+        return *q;
+      }
+    }
+    double distance = 0.0;
+    SurfacePoint q = from_tree(p, distance);
+    if (distance <= margin_ && regions_.size() < max_regions) gather(p, distance);
+    return q;
+  }
+
+  const Mesh& mesh_;
+  double margin_;
+  mutable std::vector<Region> regions_;
+  mutable std::size_t last_region_ = 0;
+  mutable bool asked_ = false;
+  mutable Eigen::Vector3d last_p_ = Eigen::Vector3d::Zero();
+  mutable SurfacePoint last_;
+};
+
+std::unique_ptr<const Shape> Mesh::local_view(double margin) const {
+  return std::make_unique<Neighbourhood>(*this, margin);
 }
 
 SurfacePoint Mesh::feature_point(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::size_t f, int code) const {

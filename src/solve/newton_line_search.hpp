@@ -18,9 +18,18 @@ namespace vibrissa::detail {
 /// a crease's band (docs/objects.md, "Speed").
 inline constexpr int max_crawl = 32;
 
+/// A step that shrinks the max-norm of the residual this many times is near the root: the next step is a chord
+/// step from the same Jacobian instead of one formed at the new point (a walk with derivatives saved).
+inline constexpr double chord_contraction = 1e-3;
+
+/// `estimates`: the first Jacobian may be an estimate (a warm start's record, object_problem.hpp). A full Newton
+/// step from an estimate, or from the Jacobian of the last point (a chord step: where the last step shrank the
+/// residual chord_contraction times, the Jacobian at the new point is not formed), is kept only if it shrinks the
+/// residual as a Newton step near the root does (estimate_contraction, levenberg_marquardt.hpp) or converges;
+/// else it is taken again from the exact Jacobian (one walk more).
 template <class Residual>
 LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bounds, double tolerance,
-                            int max_iterations) {
+                            int max_iterations, JacobianEstimates* estimates = nullptr) {
   using Vec = Eigen::Matrix<double, 3, 1>;
   using Jac = Eigen::Matrix<double, 3, 3>;
   LMResult out;
@@ -28,6 +37,7 @@ LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bou
   Vec r;
   Jac J;
   evaluate_with_jacobian(f, u, r, J);
+  bool J_inexact = estimates && estimates->estimated();  // J is an estimate, or the last point's (chord)
   if (!r.allFinite()) return out;
   double cost = r.squaredNorm();
   double previous_r_max = 0.0;  // max-norm of the residual at the last accepted point (0: none yet)
@@ -47,6 +57,10 @@ LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bou
     const double r_now = r.cwiseAbs().maxCoeff();
     const double predicted = previous_r_max > 0.0 ? r_now * (r_now / previous_r_max) * (r_now / previous_r_max)
                                                   : r_now * r_now;
+    // (not where the model predicts a step that shrinks the residual chord_contraction times: then the Jacobian
+    // at the new point is not needed)
+    const bool speculative = predicted > speculation_margin * tolerance &&
+                             (previous_r_max == 0.0 || predicted > chord_contraction * r_now);
     auto try_step = [&](const Eigen::Vector3d& step, bool speculate) {
       if (!step.allFinite()) return false;
       const Eigen::Vector3d u_new = (u + step).cwiseMax(bounds.lower).cwiseMin(bounds.upper);
@@ -55,19 +69,32 @@ LMResult newton_line_search(Residual&& f, Eigen::Vector3d u, const LMBounds& bou
       if (speculate) evaluate_with_jacobian(f, u_new, r_new, J_new);
       else evaluate(f, u_new, r_new);
       const double cost_new = r_new.squaredNorm();
+      const double r_new_max = r_new.cwiseAbs().maxCoeff();
       if (!r_new.allFinite() || !(cost_new < cost)) return false;
+      if (J_inexact && !(r_new_max <= std::max(estimate_contraction * r_now, tolerance))) return false;
       u = u_new;
       r = r_new;
       cost = cost_new;
       previous_r_max = r_now;
+      J_inexact = false;
       if (speculate) J = J_new;
-      else if (r.cwiseAbs().maxCoeff() > tolerance) evaluate_with_jacobian(f, u, r, J);
+      else if (r_new_max <= chord_contraction * r_now) J_inexact = r_new_max > tolerance;  // chord step next
+      else if (r_new_max > tolerance) evaluate_with_jacobian(f, u, r, J);
       return true;
     };
-    const Eigen::Vector3d newton = -J.partialPivLu().solve(r);
+    Eigen::Vector3d newton = -J.partialPivLu().solve(r);
+    if (J_inexact) {  // the full step from the estimate or the last point's Jacobian, else from the exact one
+      accepted = try_step(newton, speculative);
+      if (!accepted) {
+        if (estimates && estimates->estimated()) estimates->forget_estimate();
+        evaluate_with_jacobian(f, u, r, J);
+        J_inexact = false;
+        newton = -J.partialPivLu().solve(r);
+      }
+    }
     double t = 1.0;
     for (int halving = 0; halving < 12 && !accepted; ++halving, t *= 0.5)
-      accepted = try_step(t * newton, halving == 0 && predicted > speculation_margin * tolerance);
+      accepted = try_step(t * newton, halving == 0 && speculative);
     if (accepted) {
       crawl = 0;
     } else {  // damped steps, as levenberg_marquardt(), from a tenth of the last damping that was accepted

@@ -2,6 +2,7 @@
 // tip, with the statuses of edge mode and second_contact. The equations are object_problem.hpp's.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include <Eigen/Geometry>
@@ -408,7 +409,10 @@ ObjectOutcome solve_object_contact(const Whisker& w, const Scales& sc, const Obj
     tip = is_tip(w, warm->arc_length);
     u0 = tip ? Eigen::Vector3d(warm->force_x, warm->force_y, warm->force_z) / sc.force
              : Eigen::Vector3d(warm->force_y / sc.force, warm->force_z / sc.force, warm->arc_length / sc.length);
-    start = tip ? *warm : start_side_load(w, sc, g, law, u0);
+    // The record the solve of the warm state left (its kinematics and their derivatives): no walk to start.
+    const std::optional<Eigen::Vector3d> carried = tip ? std::nullopt : adopt_side_sensitivity(w, sc, g, law, *warm);
+    if (carried) u0 = *carried;
+    start = tip || carried ? *warm : start_side_load(w, sc, g, law, u0);
     if (g.core_B) {  // the side of the line core the warm contact is on
       const ObjectContactPoint p = contact_point_at(w, g, start, tip, 1.0);
       sigma = core_side(g, p.c_B, p.t_B);
@@ -684,10 +688,22 @@ Solution solve_object(const Whisker& w, const Placement& X, const ObjectContact&
   if (hint) require_finite(*hint, "load.arc_length_hint");
   if (approach_W) require_finite(*approach_W, "load.approach");
   const detail::Scales sc(w);
-  const detail::ObjectGeometryB g = detail::object_in_body(X, object);
+  // A mesh answers this solve's queries from its triangles about the contact (Shape::local_view: about each place
+  // asked within a quarter of a link of its surface): the same answers as its tree's.
+  const std::unique_ptr<const Shape> view = object.shape->local_view(0.25 * w.length() / w.links());
+  ObjectContact local = object;
+  if (view) local.shape = view.get();
+  const detail::ObjectGeometryB g = detail::object_in_body(X, local);
   const detail::ObjectOutcome o = detail::solve_object_contact(w, sc, g, detail::FrictionLaw{}, hint, options, warm);
-  Solution out = detail::object_solution(w, X, object, g, o, options, approach_W, detail::default_two_contact_rounds);
+  Solution out = detail::object_solution(w, X, local, g, o, options, approach_W, detail::default_two_contact_rounds);
   if (out.status != Status::converged && out.status != Status::second_contact) out.surface.reset();
+  // The record for the next frame's warm start: a single side contact whose state is the attempt's.
+  const LoadState& s = out.state;
+  const LoadState& a = o.attempt.state;
+  if (out.status == Status::converged && !o.attempt.tip && !out.second_contact && s.force_x == a.force_x &&
+      s.force_y == a.force_y && s.force_z == a.force_z && s.couple_x == a.couple_x && s.couple_y == a.couple_y &&
+      s.couple_z == a.couple_z && s.arc_length == a.arc_length)
+    out.state.sensitivity = detail::side_sensitivity(w, g, o.attempt.lm.u, a);
   return detail::checked_solution(std::move(out), options.tolerance, w, X, options);
 }
 

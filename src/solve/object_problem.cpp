@@ -149,6 +149,31 @@ LMBounds side_bounds() {
   return b;
 }
 
+/// Whether the Jacobian of the geometry's record is an estimate (adopted from a warm state), and dropping it.
+class RecordedEstimate final : public JacobianEstimates {
+ public:
+  explicit RecordedEstimate(const ObjectGeometryB& g) : g_(g) {}
+  [[nodiscard]] bool estimated() const override { return g_.last_jacobian && g_.last_jacobian->estimated; }
+  void forget_estimate() override {
+    if (estimated()) g_.last_jacobian.reset();
+  }
+
+ private:
+  const ObjectGeometryB& g_;
+};
+
+/// The nine kinematic quantities and the two follower vectors of a walk (const or not), in LoadSensitivity's order.
+template <class Kinematics, class Follow>
+auto components(Kinematics& k, Follow& f) {
+  return std::array{&k.p_contact_B.x, &k.p_contact_B.y, &k.p_contact_B.z, &k.force_B.x, &k.force_B.y,
+                    &k.force_B.z,     &k.couple_B.x,    &k.couple_B.y,    &k.couple_B.z, &f[0].x,
+                    &f[0].y,          &f[0].z,          &f[1].x,          &f[1].y,       &f[1].z};
+}
+
+std::array<double, 7> load_of(const LoadState& s) {
+  return {s.force_x, s.force_y, s.force_z, s.couple_x, s.couple_y, s.couple_z, s.arc_length};
+}
+
 }  // namespace
 
 template <class S>
@@ -181,7 +206,7 @@ ContactKinematics<S> walk_deflected(const Whisker& w, const ObjectGeometryB& g, 
       return g.last_jacobian->k;
     }
     const ContactKinematics<S> k = deflect_for_solve<S>(w, F_L, C_L, s, follow);
-    g.last_jacobian = ObjectGeometryB::DeflectedJacobian{input, k, follow};
+    g.last_jacobian = ObjectGeometryB::DeflectedJacobian{input, k, follow, std::nullopt, false};
     if (!g.last_deflected) g.last_deflected = ObjectGeometryB::Deflected{};
     ObjectGeometryB::Deflected& d = *g.last_deflected;
     auto v = [](const V3<S>& x) { return V3<double>(value_of(x.x), value_of(x.y), value_of(x.z)); };
@@ -219,6 +244,69 @@ LoadState start_side_load(const Whisker& w, const Scales& sc, const ObjectGeomet
   state.couple_z = C_L.z.v;
   state.arc_length = s.v;
   return state;
+}
+
+std::optional<Eigen::Vector3d> adopt_side_sensitivity(const Whisker& w, const Scales& sc, const ObjectGeometryB& g,
+                                                      const FrictionLaw& law, const LoadState& warm) {
+  using D = Dual<3>;
+  const LoadSensitivity& c = warm.sensitivity;
+  if (!c.object || c.whisker == 0 || c.whisker != w.mechanics_fingerprint() ||
+      law.kind != FrictionLaw::Kind::frictionless)
+    return std::nullopt;
+  const Eigen::Vector3d u(c.unknowns[0], c.unknowns[1], c.unknowns[2]);
+  const LMBounds b = side_bounds();
+  if (u != u.cwiseMax(b.lower).cwiseMin(b.upper)) return std::nullopt;
+  const std::array<D, 3> x = {D::variable(u[0], 0), D::variable(u[1], 1), D::variable(u[2], 2)};
+  V3<D> F_L, C_L;
+  D s, r;
+  double slope;
+  side_walk_inputs<D>(w, sc, g, law, x, F_L, C_L, s, r, slope);
+  const std::array<D, 7> input{F_L.x, F_L.y, F_L.z, C_L.x, C_L.y, C_L.z, s};
+  std::array<double, 7> load{};
+  for (std::size_t i = 0; i < 7; ++i) load[i] = input[i].v;
+  if (load != load_of(warm)) return std::nullopt;  // the record is not of this load (or of another law)
+  ObjectGeometryB::DeflectedJacobian J{input, {}, {}, u, true};
+  ObjectGeometryB::Deflected d;
+  d.load = load;
+  const auto to = components(J.k, J.follow);
+  const auto values = components(d.k, d.follow);
+  for (std::size_t i = 0; i < to.size(); ++i) {
+    const double* from = i < 9 ? &c.kinematics[4 * i] : &c.followers[4 * (i - 9)];
+    to[i]->v = *values[i] = from[0];
+    for (std::size_t j = 0; j < 3; ++j) to[i]->d[j] = from[1 + j];
+  }
+  g.last_jacobian = J;
+  g.last_deflected = d;
+  return u;
+}
+
+LoadSensitivity side_sensitivity(const Whisker& w, const ObjectGeometryB& g, const Eigen::Vector3d& u,
+                                 const LoadState& state) {
+  LoadSensitivity out;
+  const std::array<double, 7> load = load_of(state);
+  if (!g.last_deflected || g.last_deflected->load != load || !g.last_jacobian || !g.last_jacobian->side_u) return out;
+  const ObjectGeometryB::DeflectedJacobian& J = *g.last_jacobian;
+  ObjectGeometryB::Deflected values = *g.last_deflected;
+  const auto from = components(J.k, J.follow);
+  const auto value = components(values.k, values.follow);
+  // Broyden's update of K = dk/du from the record's unknowns u_J to u: K + (k(u) - k(u_J) - K s) s^T / (s^T s).
+  const Eigen::Vector3d step = u - *J.side_u;
+  const double ss = step.squaredNorm();
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    const Dual<3>& k = *from[i];
+    const double predicted = k.d[0] * step[0] + k.d[1] * step[1] + k.d[2] * step[2];
+    const double c = ss > 0.0 ? (*value[i] - k.v - predicted) / ss : 0.0;
+    double* to = i < 9 ? &out.kinematics[4 * i] : &out.followers[4 * (i - 9)];
+    to[0] = *value[i];
+    for (std::size_t j = 0; j < 3; ++j) {
+      to[1 + j] = k.d[j] + c * step[static_cast<Eigen::Index>(j)];
+      if (!std::isfinite(to[1 + j])) return LoadSensitivity{};
+    }
+  }
+  out.unknowns = {u[0], u[1], u[2]};
+  out.whisker = w.mechanics_fingerprint();
+  out.object = true;
+  return out;
 }
 
 ContactKinematics<double> kinematics_at(const Whisker& w, const ObjectGeometryB& g, const LoadState& state) {
@@ -311,6 +399,8 @@ ObjectAttempt attempt_side(const Whisker& w, const Scales& sc, const ObjectGeome
     side_walk_inputs<S>(w, sc, g, law, u, F_L, C_L, s, r, slope);
     FollowerVectors<S> follow{V3<S>(S(1.0), S(0.0), S(0.0)), V3<S>(S(0.0), S(1.0), S(0.0))};
     const auto k = walk_deflected<S>(w, g, F_L, C_L, s, follow);
+    if constexpr (!std::is_same_v<S, double>)  // the record's derivatives are these unknowns' (side_sensitivity)
+      g.last_jacobian->side_u = Eigen::Vector3d(u[0].v, u[1].v, u[2].v);
     const V3<S>& c = k.p_contact_B;
     const V3<S>& t = follow[0];
     const V3<S> F((S(1.0) / sc.force) * k.force_B.x, (S(1.0) / sc.force) * k.force_B.y,
@@ -356,7 +446,9 @@ ObjectAttempt attempt_side(const Whisker& w, const Scales& sc, const ObjectGeome
     return std::array<S, 3>{inv_L * (gap_c - deficit), dot(q.normal, t) - slope, third};
   };
   ObjectAttempt a;
-  a.lm = newton_line_search(residual, u0, side_bounds(), options.tolerance / sc.length, options.max_iterations);
+  RecordedEstimate estimate(g);
+  a.lm = newton_line_search(residual, u0, side_bounds(), options.tolerance / sc.length, options.max_iterations,
+                            &estimate);
   if (a.lm.converged) a.status = Status::converged;
   else a.status = a.lm.at_upper_bound ? Status::slipped_off : Status::not_converged;
   // The state: the load at the solved unknowns (the same numbers the residual gave the walk).

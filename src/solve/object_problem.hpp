@@ -47,6 +47,9 @@ struct ObjectGeometryB {
     std::array<Dual<3>, 7> input;  ///< force, couple, s
     ContactKinematics<Dual<3>> k;
     FollowerVectors<Dual<3>> follow;
+    /// The side unknowns whose derivatives these are (set by a side residual's evaluation; none: another's).
+    std::optional<Eigen::Vector3d> side_u;
+    bool estimated = false;  ///< derivatives adopted from a warm state's record (adopt_side_sensitivity)
   };
   mutable std::optional<DeflectedJacobian> last_jacobian;
   /// The shape's query at c_B (B frame).
@@ -100,6 +103,17 @@ ObjectAttempt attempt_side(const Whisker& w, const Scales& sc, const ObjectGeome
 /// walk with derivatives, and its values for the checks at that load: lowest_piece, contact_point_at).
 LoadState start_side_load(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                           const Eigen::Vector3d& u0);
+/// A warm side start from the record a frictionless object solve left with its state (LoadSensitivity): where it
+/// was made on this whisker and its unknowns give exactly the state's load, g's records take the kinematics there
+/// and their derivatives (an estimate: the first Newton step from it is checked, newton_line_search()), and the
+/// unknowns are returned; else none (the record is ignored).
+std::optional<Eigen::Vector3d> adopt_side_sensitivity(const Whisker& w, const Scales& sc, const ObjectGeometryB& g,
+                                                      const FrictionLaw& law, const LoadState& warm);
+/// The record a frictionless side contact solved at unknowns u (load `state`) leaves with its state: the kinematics
+/// there with the last walk with derivatives carried to u by one secant update (as ContactEvaluations). Empty
+/// (whisker 0) where g's records do not hold that load or a side walk with derivatives.
+LoadSensitivity side_sensitivity(const Whisker& w, const ObjectGeometryB& g, const Eigen::Vector3d& u,
+                                 const LoadState& state);
 /// The tip contact's equations from scaled unknowns u0 = (F_x, F_y, F_z) / force scale.
 ObjectAttempt attempt_tip(const Whisker& w, const Scales& sc, const ObjectGeometryB& g, const FrictionLaw& law,
                           const Eigen::Vector3d& u0, const SolveOptions& options,

@@ -84,6 +84,42 @@ TEST(Mesh, ClosestPointsMatchABruteForceLoop) {
   }
 }
 
+TEST(Mesh, ALocalViewAnswersAsTheTree) {
+  // A solve's view (Shape::local_view): queries wandering about a contact, near the surface, inside and up to
+  // 2 mm away (beyond the gathered triangles: those go to the tree), some asked twice. Every answer is the tree's.
+  const Mesh ball(tessellated_sphere(Eigen::Vector3d::Zero(), 0.003, 5));
+  const std::unique_ptr<const Shape> view = ball.local_view(0.0001);
+  ASSERT_NE(view, nullptr);
+  EXPECT_EQ(view->type(), "mesh");
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::Vector3d contact = Eigen::Vector3d(0.6, 0.8, 0.0) * 0.00305;
+  int faces = 0;
+  for (int i = 0; i < 600; ++i) {
+    const double reach = i % 5 == 4 ? 0.002 : 0.0005;
+    Eigen::Vector3d p = contact + reach * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    if (i % 7 == 3) p = contact;  // asked again
+    if (i % 100 == 99) contact = contact.normalized() * 0.00305 + 0.0003 * Eigen::Vector3d(u(rng), u(rng), 0.0);
+    const SurfacePoint a = view->nearest(p), b = ball.nearest(p);
+    EXPECT_NEAR((a.closest - b.closest).norm(), 0.0, 1e-15) << i;
+    EXPECT_NEAR(a.signed_distance, b.signed_distance, 1e-15) << i;
+    EXPECT_NEAR((a.normal - b.normal).norm(), 0.0, 1e-12) << i;
+    EXPECT_NEAR((a.normal_derivative - b.normal_derivative).norm() * 1e-4, 0.0, 1e-12) << i;
+    EXPECT_EQ(a.feature, b.feature) << i;
+    if (a.feature == SurfaceFeature::face) {
+      EXPECT_EQ(a.feature_id, b.feature_id) << i;
+      ++faces;
+    }
+    const SurfacePoint held = view->nearest_on_feature(p + Eigen::Vector3d(1e-5, 0.0, 0.0), a.feature_id);
+    const SurfacePoint held_b = ball.nearest_on_feature(p + Eigen::Vector3d(1e-5, 0.0, 0.0), a.feature_id);
+    EXPECT_EQ(held.closest, held_b.closest) << i;
+    EXPECT_EQ(view->signed_distance(p), a.signed_distance) << i;
+  }
+  EXPECT_GT(faces, 300);
+  EXPECT_EQ(view->bounds().lower, ball.bounds().lower);
+  EXPECT_TRUE(view->needs_thickness());
+}
+
 TEST(Mesh, NormalsAndTheirDerivativesAgreeWithCentralDifferences) {
   const Mesh ball(tessellated_sphere(Eigen::Vector3d::Zero(), 0.003, 2));
   std::mt19937_64 rng(5);

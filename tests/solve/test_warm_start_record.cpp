@@ -12,6 +12,9 @@
 #include <string>
 
 #include "../core/test_helpers.hpp"
+#include "vibrissa/objects/cylinder.hpp"
+#include "vibrissa/objects/plane.hpp"
+#include "vibrissa/solve/object_contact.hpp"
 #include "vibrissa/solve/solvers.hpp"
 
 namespace vibrissa {
@@ -192,6 +195,64 @@ TEST(WarmStartRecord, AForeignOrStaleRecordIsIgnoredAndAWrongOneCostsTimeNotTheR
     const Solution point_scrambled = solve_point(w, from_w.contact_point_W, std::nullopt, fast(), &scrambled);
     expect_same_root(point_plain, point_scrambled, "point " + what);
     EXPECT_EQ(point_plain.iterations, point_scrambled.iterations) << "point " << what;
+  }
+}
+
+TEST(WarmStartRecord, ObjectSideContactsLeaveARecordThatChangesTheCostNotTheRoot) {
+  // A 1 kHz protraction of 2 degrees and back against a peg of radius 1.5 mm and a wall across the whisker's convex
+  // side (bench_objects' objects), each frame warm-started from the last frame's state with its record and from its
+  // numbers typed in; then records with wrong derivatives, and an edge solve's record (no load frame axes).
+  const Whisker w = rat_whisker(100, tilted_pose());
+  const Cylinder peg({0.020, 0.0015, 0.0}, {0.0, 0.0, 1.0}, 0.0015);
+  const Eigen::Vector3d at = w.placement().to_world(w.rest_point_B(0.022));
+  const Eigen::Vector3d t = w.placement().R_WB * w.rest_link_frames_B()[55].col(0);
+  const Eigen::Vector3d y = w.placement().R_WB.col(1);
+  const Eigen::Vector3d n = (y - y.dot(t) * t).normalized();
+  const Plane wall(at + 0.0004 * n, n);
+  for (const Shape* shape : std::initializer_list<const Shape*>{&peg, &wall}) {
+    const ObjectContact o{shape, {}, true};
+    const std::string name(shape->type());
+    Solution last;
+    int recorded = 0, differing = 0, in_contact = 0;
+    for (int i = 0; i <= 80; ++i) {
+      Pose pose = w.placement().pose();
+      pose.theta += (i <= 40 ? i : 80 - i) * 0.05 * deg;
+      const Placement X(pose);
+      const bool warm = i > 0 && last.status == Status::converged;
+      const LoadState typed = typed_in(last.state);
+      const Solution now = solve_object(w, X, o, std::nullopt, fast(), warm ? &last.state : nullptr);
+      const Solution plain = solve_object(w, X, o, std::nullopt, fast(), warm ? &typed : nullptr);
+      expect_same_root(plain, now, name + " frame " + std::to_string(i));
+      if (now.status == Status::converged) {
+        ++in_contact;
+        EXPECT_LE((plain.surface->normal_W - now.surface->normal_W).norm(), 1e-9) << name << " frame " << i;
+      }
+      recorded += now.state.sensitivity.object && now.state.sensitivity.whisker == w.mechanics_fingerprint();
+      differing += warm && !same_bits(plain, now);
+      last = now;
+    }
+    EXPECT_GE(in_contact, 60) << name;  // (the wall is left behind 20 frames before the turn)
+    EXPECT_EQ(recorded, in_contact) << name;  // every side contact left a record
+    EXPECT_GE(differing, 40) << name;         // and the warm starts used it
+
+    Pose before_pose = w.placement().pose();
+    before_pose.theta -= 0.2 * deg;
+    const Solution before = solve_object(w, Placement(before_pose), o, std::nullopt, fast());
+    ASSERT_EQ(before.status, Status::converged) << name;
+    const LoadState plain_state = typed_in(before.state);
+    const Solution plain = solve_object(w, w.placement(), o, std::nullopt, fast(), &plain_state);
+    for (double sign : {-3.0, 0.2, 30.0}) {
+      LoadState scrambled = before.state;
+      for (std::size_t i = 0; i < scrambled.sensitivity.kinematics.size(); ++i)
+        if (i % 4 != 0) scrambled.sensitivity.kinematics[i] *= (i % 3 == 0 ? sign : 1.0 / sign);
+      for (std::size_t i = 0; i < scrambled.sensitivity.followers.size(); ++i)
+        if (i % 4 != 0) scrambled.sensitivity.followers[i] *= (i % 3 == 0 ? 1.0 / sign : sign);
+      expect_same_root(plain, solve_object(w, w.placement(), o, std::nullopt, fast(), &scrambled),
+                       name + " scrambled by " + std::to_string(sign));
+    }
+    LoadState edge_record = before.state;  // the same load with an edge solve's record (kinematics, no axes)
+    edge_record.sensitivity.object = false;
+    EXPECT_TRUE(same_bits(plain, solve_object(w, w.placement(), o, std::nullopt, fast(), &edge_record))) << name;
   }
 }
 

@@ -46,6 +46,9 @@ struct DynamicsProperties {
   /// base signals of whisking in air by a few per cent, and it is evaluated at the rigid base motion's velocity).
   bool air_drag = false;
   AirProperties air;
+  /// Modes the nonlinear chain (contact) integrates, the rest static (SimulationOptions::modes; 0: all). Read as
+  /// dynamics.modes ("all" or a count) and handed to the simulation by the case and array readers.
+  int modes = 0;
 };
 
 /// Throws std::invalid_argument naming the field and value for a non-positive density (whisker or air), a

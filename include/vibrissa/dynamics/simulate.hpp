@@ -51,6 +51,10 @@ struct SimulationOptions {
   /// Objects the whisker may touch (contact.hpp); they need the nonlinear chain.
   std::vector<Obstacle> objects;
   ContactLaw contact;
+  /// Modes integrated by the nonlinear chain (the contact path): the lowest `modes`, the others following their
+  /// load statically (residual flexibility; docs/dynamics.md, "Modal truncation"); 0 or >= 3N: all (exact).
+  /// The linear chain always integrates all.
+  int modes = 0;
 };
 void validate(const SimulationOptions& options);
 

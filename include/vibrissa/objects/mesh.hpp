@@ -38,6 +38,10 @@ class Mesh final : public Shape {
   [[nodiscard]] Bounds bounds() const override { return bounds_; }
   [[nodiscard]] bool needs_thickness() const override { return true; }
   [[nodiscard]] ShapeDescription describe() const override;
+  /// About each place the solve asks within `margin` of the surface (up to 16), the triangles within about three
+  /// margins (one search of the tree); each later query answered from them where none of the others can be nearer,
+  /// else from the tree: the same answers.
+  [[nodiscard]] std::unique_ptr<const Shape> local_view(double margin) const override;
 
   [[nodiscard]] const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }
   [[nodiscard]] const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
@@ -49,6 +53,9 @@ class Mesh final : public Shape {
 
  private:
   struct Tree;
+  class Neighbourhood;
+  /// The query at p whose nearest point q lies on triangle f (its feature from q's barycentric coordinates).
+  [[nodiscard]] SurfacePoint on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::size_t f) const;
   /// The query at p of feature `code` of triangle f continued as a plane, line or point (q: its nearest point).
   [[nodiscard]] SurfacePoint feature_point(const Eigen::Vector3d& p, const Eigen::Vector3d& q, std::size_t f,
                                            int code) const;

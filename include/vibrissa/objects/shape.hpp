@@ -12,6 +12,7 @@
 //   near a vertex        (I - n n^T) / |p - closest|               (... of a vertex, a sphere)
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -97,6 +98,14 @@ class Shape {
   /// Signed distance alone (the same number as nearest().signed_distance; shapes may answer it faster).
   [[nodiscard]] virtual double signed_distance(const Eigen::Vector3d& p) const { return nearest(p).signed_distance; }
   [[nodiscard]] virtual Bounds bounds() const = 0;
+  /// A view of this shape for one solve's queries, which gather about one place (the contact): it answers every
+  /// query as this shape does, faster there (a mesh: from the triangles its tree finds about each place asked within
+  /// `margin` [m] of the surface; docs/objects.md, "Speed"). It keeps state between queries: one
+  /// view per solve and thread. nullptr: the shape's own queries are as fast.
+  [[nodiscard]] virtual std::unique_ptr<const Shape> local_view(double margin) const {
+    (void)margin;
+    return nullptr;
+  }
   /// A line core (an infinite cylinder), else nullopt.
   [[nodiscard]] virtual std::optional<LineCore> line_core() const { return std::nullopt; }
   /// Whether contacts need the whisker's thickness: shapes with edges and corners (box, mesh), whose normal is

@@ -25,10 +25,14 @@ namespace vibrissa {
 /// whisk, tests/solve/test_warm_start_record.cpp).
 /// Internal to the solvers: used only on a whisker with the same mechanics_fingerprint() and only while the
 /// state's load is exactly the one it was made at; never written to files (a state read back starts without it).
+/// The frictionless object mode leaves the same record of a side contact, with the load frame's x and y axes its
+/// walk carries (`followers`, `object` set; docs/objects.md, "Speed"); only an object solve adopts those.
 struct LoadSensitivity {
   std::uint64_t whisker = 0;           ///< Whisker::mechanics_fingerprint() it was made on (0: none)
   std::array<double, 3> unknowns{};    ///< the solve's scaled unknowns (F_y, F_z, s) it holds at (internal)
   std::array<double, 36> kinematics{};  ///< p_contact_B, force_B, couple_B: each value, then 3 derivatives (internal)
+  bool object = false;                 ///< made by the object mode: `followers` hold (internal)
+  std::array<double, 24> followers{};  ///< the load frame's x and y axes in B, as `kinematics` (internal)
 };
 
 /// Unknowns of a contact solve: force components in the frame of the loaded link (x along the link) and
