@@ -145,7 +145,8 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
       if (type != "edge" && type != "peg") {
         // A surface (the objects of `vibrissa solve`: plane, sphere, cylinder, box, mesh; SI), with the whisker's
         // thickness by default.
-        if (!o.is_object() || type.empty())
+        if (!o.is_object() || (type != "cylinder" && type != "plane" && type != "sphere" && type != "box" &&
+                               type != "mesh"))
           fail(where + ".type must be \"edge\", \"peg\", \"cylinder\", \"plane\", \"sphere\", \"box\" or "
                "\"mesh\", got " + quote_text(type));
         const std::shared_ptr<const Shape> shape =

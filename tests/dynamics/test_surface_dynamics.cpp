@@ -185,3 +185,4 @@ TEST(DynamicsSurfaces, TouchAndReleaseOfASphereAreReportedWhereTheGapCrossesZero
 }  // namespace
 }  // namespace vibrissa::dynamics
 
+
