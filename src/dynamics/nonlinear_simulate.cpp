@@ -243,34 +243,11 @@ class Integrator {
       const Eigen::Vector3d rel = cv.x_B - c_B;
       Eigen::Vector3d n = dist > 0.0 ? Eigen::Vector3d(best_r / dist) : Eigen::Vector3d(best_t.cross(e_B).normalized());
       if (crossed) n = -n;
-      const Eigen::Index joints = 3 * (cv.link + 1);
-      Jt_.resize(joints, 3);  // J^T, joints <= link
-      for (int j = 0; j <= cv.link; ++j) {
-        const std::size_t u = static_cast<std::size_t>(j);
-        Jt_.middleRows<3>(3 * j) = kin_.joint_axes_B[u].transpose() * skew(cv.x_B - kin_.nodes_B[u]);
-      }
-      // Phi^T J^T with the first 3 (link + 1) rows of Phi, mode by mode: the three dot products of a mode's column
-      // read it from memory once (three matrix-vector products read Phi three times).
-      Eigen::MatrixXd Ui(m_, 3);
-      for (Eigen::Index k = 0; k < m_; ++k) {
-        const auto col = Phi_.col(k).head(joints);
-        Ui(k, 0) = col.dot(Jt_.col(0));
-        Ui(k, 1) = col.dot(Jt_.col(1));
-        Ui(k, 2) = col.dot(Jt_.col(2));
-      }
+      Eigen::MatrixXd Ui = modal_projection(cv.link, cv.x_B);
       // The contact point's velocity in B: the base's, plus J q' = (Phi^T J^T)^T eta'.
       const Eigen::Vector3d v_B =
           R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + Ui.transpose() * rate;
-      // With a truncated basis the residual modes follow the force statically: the contact point gives way by
-      // C F, C = J R J^T = sum_j J_j^T K_j^-1 J_j - (Phi_m^T J^T)^T k^-1 (Phi_m^T J^T), in series with the law.
-      Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-      if (truncated_) {
-        for (int j = 0; j <= cv.link; ++j) {
-          const auto Jj = Jt_.middleRows<3>(3 * j);
-          C.noalias() += Jj.transpose() * K_inv_[static_cast<std::size_t>(j)] * Jj;
-        }
-        C.noalias() -= Ui.transpose() * (Ui.array().colwise() / k_.array()).matrix();
-      }
+      const Eigen::Matrix3d C = residual_compliance(cv.link, Ui);
       // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n, for the
       // stiffness k_n in series with the residual compliance n^T C n (the series law scales the force by
       // 1 / (1 + k_n n^T C n), so the damper is taken that much larger).
@@ -349,18 +326,7 @@ class Integrator {
         continue;
       }
       cv.force_B = fn * n + ft * b;
-      if (truncated_) {
-        // The law at x + C F, linear in x within its branch: F = (I - S_x C)^-1 F_0, and so its derivatives. The
-        // contact point and gap reported are those of the given-way point.
-        const Eigen::Matrix3d A = (Eigen::Matrix3d::Identity() - cv.S_x * C).inverse();
-        cv.force_B = A * cv.force_B;
-        cv.S_x = A * cv.S_x;
-        cv.S_v = A * cv.S_v;
-        const Eigen::Vector3d give = C * cv.force_B;
-        cv.x_B += give;
-        cv.gap += n.dot(give);
-        cv.point_W = f.base.p_W_base + R * cv.x_B;
-      }
+      give_way(f, C, n, cv);
       cv.force_W = R * cv.force_B;
       modal_force.noalias() += Ui * cv.force_B;
       if (U) (*U)[o] = std::move(Ui);
@@ -375,9 +341,45 @@ class Integrator {
       const std::size_t u = static_cast<std::size_t>(j);
       Jt_.middleRows<3>(3 * j) = kin_.joint_axes_B[u].transpose() * skew(x_B - kin_.nodes_B[u]);
     }
+    // Mode by mode: the three dot products of a mode's column read it from memory once (three matrix-vector
+    // products read Phi three times).
     Eigen::MatrixXd Ui(m_, 3);
-    for (Eigen::Index k = 0; k < 3; ++k) Ui.col(k).noalias() = Phi_.topRows(joints).transpose() * Jt_.col(k);
+    for (Eigen::Index k = 0; k < m_; ++k) {
+      const auto col = Phi_.col(k).head(joints);
+      Ui(k, 0) = col.dot(Jt_.col(0));
+      Ui(k, 1) = col.dot(Jt_.col(1));
+      Ui(k, 2) = col.dot(Jt_.col(2));
+    }
     return Ui;
+  }
+
+  /// With a truncated basis the residual modes follow a contact force statically: the point (on `link`, J^T in Jt_
+  /// from modal_projection, Ui = Phi_m^T J^T) gives way by C F, C = J R J^T = sum_j J_j^T K_j^-1 J_j - Ui^T k^-1 Ui.
+  /// Zero with all modes.
+  Eigen::Matrix3d residual_compliance(int link, const Eigen::MatrixXd& Ui) const {
+    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+    if (!truncated_) return C;
+    for (int j = 0; j <= link; ++j) {
+      const auto Jj = Jt_.middleRows<3>(3 * j);
+      C.noalias() += Jj.transpose() * K_inv_[static_cast<std::size_t>(j)] * Jj;
+    }
+    C.noalias() -= Ui.transpose() * (Ui.array().colwise() / k_.array()).matrix();
+    return C;
+  }
+
+  /// The law (force F_0 = cv.force_B, derivatives S_x, S_v) in series with the give C: at x + C F, linear in x
+  /// within its branch, F = (I - S_x C)^-1 F_0, and so its derivatives; the contact point and gap become the
+  /// given-way ones. Nothing with all modes.
+  void give_way(const Frame& f, const Eigen::Matrix3d& C, const Eigen::Vector3d& n, ContactValue& cv) const {
+    if (!truncated_) return;
+    const Eigen::Matrix3d A = (Eigen::Matrix3d::Identity() - cv.S_x * C).inverse();
+    cv.force_B = A * cv.force_B;
+    cv.S_x = A * cv.S_x;
+    cv.S_v = A * cv.S_v;
+    const Eigen::Vector3d give = C * cv.force_B;
+    cv.x_B += give;
+    cv.gap += n.dot(give);
+    cv.point_W = f.base.p_W_base + f.base.R_WB * cv.x_B;
   }
 
   /// The surfaces' contacts (slots objects_.size() ...; see evaluate_contacts): the points found by
@@ -425,10 +427,13 @@ class Integrator {
         if (cv.gap >= 0.0 && !frozen_on) continue;
         const Eigen::Vector3d n = R.transpose() * c.surface.normal;
         Eigen::MatrixXd Ui = modal_projection(cv.link, cv.x_B);
+        const Eigen::Matrix3d C = residual_compliance(cv.link, Ui);
         const Eigen::Vector3d v_B =
             R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + Ui.transpose() * rate;
         const double inv_mass = (Ui * n).squaredNorm();
-        const double cn = 2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / std::max(inv_mass, 1e-300));
+        const double series_n = 1.0 + kn_ * std::max(0.0, n.dot(C * n));  // as the line's
+        const double cn =
+            2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / series_n / std::max(inv_mass, 1e-300)) * series_n;
         const double gap_rate = n.dot(v_B);
         const double fn_raw = -kn_ * cv.gap - cn * gap_rate;
         const double fn = frozen_on ? fn_raw : std::max(0.0, fn_raw);
@@ -499,6 +504,7 @@ class Integrator {
           cv.anchor_W = cv.point_W;
         }
         cv.force_B = fn * n + ft_B;
+        give_way(f, C, n, cv);
         cv.force_W = R * cv.force_B;
         modal_force.noalias() += Ui * cv.force_B;
         if (U) (*U)[o] = std::move(Ui);
