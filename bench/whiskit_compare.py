@@ -236,7 +236,8 @@ def cmd_ours(args) -> int:
         summary = json.loads((pathlib.Path(tmp) / "out" / "summary.json").read_text())
     user, system = float(times["User time (seconds)"]), float(times["System time (seconds)"])
     print(" ".join(command[:2]) + " SCENE.json " + " ".join(command[3:-2]))
-    print(f"31 whiskers x {DURATION_S:g} s, N = {args.links or 100}, mu {args.mu:g}, {frames} frames: CPU {user + system:.2f} s (user {user:.2f}, "
+    print(f"31 whiskers x {DURATION_S:g} s, N = {args.links or 100}, mu {args.mu:g}, {frames} frames: "
+          f"CPU {user + system:.2f} s (user {user:.2f}, "
           f"sys {system:.2f}), wall {times['Elapsed (wall clock) time (h:mm:ss or m:ss)']}, "
           f"load average {load:.1f} -> {os.getloadavg()[0]:.1f}")
     print("dynamics:", json.dumps(summary.get("dynamics", {}))[:400])
