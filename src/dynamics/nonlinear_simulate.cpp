@@ -384,6 +384,35 @@ class Integrator {
     return Ui;
   }
 
+  /// With a truncated basis the residual modes follow a contact force statically: the point (on `link`, J^T in Jt_
+  /// from modal_projection, Ui = Phi_m^T J^T) gives way by C F, C = J R J^T = sum_j J_j^T K_j^-1 J_j - Ui^T k^-1 Ui.
+  /// Zero with all modes.
+  Eigen::Matrix3d residual_compliance(int link, const Eigen::MatrixXd& Ui) const {
+    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+    if (!truncated_) return C;
+    for (int j = 0; j <= link; ++j) {
+      const auto Jj = Jt_.middleRows<3>(3 * j);
+      C.noalias() += Jj.transpose() * K_inv_[static_cast<std::size_t>(j)] * Jj;
+    }
+    C.noalias() -= Ui.transpose() * (Ui.array().colwise() / k_.array()).matrix();
+    return C;
+  }
+
+  /// The law (force F_0 = cv.force_B, derivatives S_x, S_v) in series with the give C: at x + C F, linear in x
+  /// within its branch, F = (I - S_x C)^-1 F_0, and so its derivatives; the contact point and gap become the
+  /// given-way ones. Nothing with all modes.
+  void give_way(const Frame& f, const Eigen::Matrix3d& C, const Eigen::Vector3d& n, ContactValue& cv) const {
+    if (!truncated_) return;
+    const Eigen::Matrix3d A = (Eigen::Matrix3d::Identity() - cv.S_x * C).inverse();
+    cv.force_B = A * cv.force_B;
+    cv.S_x = A * cv.S_x;
+    cv.S_v = A * cv.S_v;
+    const Eigen::Vector3d give = C * cv.force_B;
+    cv.x_B += give;
+    cv.gap += n.dot(give);
+    cv.point_W = f.base.p_W_base + f.base.R_WB * cv.x_B;
+  }
+
   /// The surfaces' contacts (slots objects_.size() ...; see evaluate_contacts): the points found by
   /// surface_contacts, the line's penalty and damping along the surface's normal n, and the frictional object
   /// mode's friction (docs/objects.md, "Friction"): across the whisker along b = n x t / |n x t| (the whisker slides
