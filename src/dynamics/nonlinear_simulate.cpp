@@ -335,34 +335,6 @@ class Integrator {
     }
   }
 
-  /// With a truncated basis the residual modes follow the force statically: the contact point on `link` (Jt_ its
-  /// J^T, Ui = Phi_m^T J^T) gives way by C F, C = J R J^T = sum_j J_j^T K_j^-1 J_j - Ui^T k^-1 Ui; zero otherwise.
-  Eigen::Matrix3d residual_compliance(int link, const Eigen::MatrixXd& Ui) const {
-    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-    if (!truncated_) return C;
-    for (int j = 0; j <= link; ++j) {
-      const auto Jj = Jt_.middleRows<3>(3 * j);
-      C.noalias() += Jj.transpose() * K_inv_[static_cast<std::size_t>(j)] * Jj;
-    }
-    C.noalias() -= Ui.transpose() * (Ui.array().colwise() / k_.array()).matrix();
-    return C;
-  }
-
-  /// The contact law in series with the residual compliance C (a truncated basis): the law at x + C F, linear in
-  /// x within its branch: F = (I - S_x C)^-1 F_0, and so its derivatives. The contact point and gap reported are
-  /// those of the given-way point.
-  static void give_way(const Frame& f, const Eigen::Matrix3d& C, const Eigen::Vector3d& n, ContactValue& cv) {
-    if (C.isZero(0.0)) return;
-    const Eigen::Matrix3d A = (Eigen::Matrix3d::Identity() - cv.S_x * C).inverse();
-    cv.force_B = A * cv.force_B;
-    cv.S_x = A * cv.S_x;
-    cv.S_v = A * cv.S_v;
-    const Eigen::Vector3d give = C * cv.force_B;
-    cv.x_B += give;
-    cv.gap += n.dot(give);
-    cv.point_W = f.base.p_W_base + f.base.R_WB * cv.x_B;
-  }
-
   /// Phi^T J^T of the point x_B on link `link` (the modal projection of a force there); J^T into Jt_ (its rows
   /// for the joints up to the link).
   Eigen::MatrixXd modal_projection(int link, const Eigen::Vector3d& x_B) {
