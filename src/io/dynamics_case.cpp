@@ -149,8 +149,14 @@ DynamicsCase dynamics_case_from_json(const json& j, const Whisker& whisker) {
                                type != "mesh"))
           fail(where + ".type must be \"edge\", \"peg\", \"cylinder\", \"plane\", \"sphere\", \"box\" or "
                "\"mesh\", got " + quote_text(type));
-        const std::shared_ptr<const Shape> shape =
-            shape_from_json(o, where, LengthKeys::metres, {}, {"thickness", "friction_coefficient"});
+        // The shape's own checks name its field ("object.radius"): the message says which object too.
+        std::shared_ptr<const Shape> shape;
+        try {
+          shape = shape_from_json(o, where, LengthKeys::metres, {}, {"thickness", "friction_coefficient"});
+        } catch (const std::invalid_argument& e) {
+          const std::string what = e.what();
+          fail(what.rfind(where, 0) == 0 ? what : where + ": " + what);
+        }
         const bool thickness = o.contains("thickness") ? json_bool(o.at("thickness"), where + ".thickness") : true;
         const double mu = number_or(o, "friction_coefficient", where, 0.0);
         if (!(mu >= 0.0)) fail(where + ".friction_coefficient must be >= 0, got " + format_value(mu));

@@ -215,5 +215,27 @@ TEST(DynamicsModes, PaperSchemeIsRejectedWithItsName) {
   EXPECT_NE(message(slow).find("dynamics.joint_damping_time"), std::string::npos) << message(slow);
 }
 
+// A surface in a dynamics case with an invalid field: the message names the object and the field and value.
+TEST(DynamicsCase, AnInvalidSurfaceNamesTheObjectAndTheField) {
+  const Whisker w = Whisker::from_parabola(0.03, 10.0, straight_props(20));
+  auto message = [&](const nlohmann::json& object) {
+    const nlohmann::json j = {{"objects", nlohmann::json::array({{{"type", "peg"}, {"point", {0.02, 0.0, 0.0}},
+                                                                   {"radius", 0.001}},
+                                                                  object})}};
+    try {
+      (void)io::dynamics_case_from_json(j, w);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string radius = message({{"type", "sphere"}, {"centre", {0.02, 0.01, 0.0}}, {"radius", -1.0}});
+  EXPECT_NE(radius.find("objects[1]"), std::string::npos) << radius;
+  EXPECT_NE(radius.find("radius"), std::string::npos) << radius;
+  EXPECT_NE(radius.find("-1"), std::string::npos) << radius;
+  const std::string centre = message({{"type", "sphere"}, {"centre", "x"}, {"radius", 0.002}});
+  EXPECT_EQ(centre.rfind("objects[1].centre", 0), 0u) << centre;
+}
+
 }  // namespace
 }  // namespace vibrissa::dynamics
