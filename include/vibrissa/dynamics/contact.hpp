@@ -64,7 +64,7 @@ Obstacle obstacle(std::shared_ptr<const Shape> shape, const ObjectPose& X_WO, bo
 /// An edge (solve_edge's, centre line touches it) with friction `mu`.
 LineObstacle line_obstacle(const Edge& edge, double mu);
 /// A placed shape with a line core (a peg: objects::Cylinder) with friction `mu`; throws std::invalid_argument
-/// naming the shape's type for shapes without one (planes, spheres, boxes, meshes are not offered in motion).
+/// naming the shape's type for shapes without one (those are surfaces in motion: obstacle() above).
 LineObstacle line_obstacle(const ObjectContact& object, double mu);
 
 /// Penalty and damping of the contacts.
