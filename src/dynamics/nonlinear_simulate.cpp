@@ -243,31 +243,18 @@ class Integrator {
       const Eigen::Vector3d rel = cv.x_B - c_B;
       Eigen::Vector3d n = dist > 0.0 ? Eigen::Vector3d(best_r / dist) : Eigen::Vector3d(best_t.cross(e_B).normalized());
       if (crossed) n = -n;
-      Eigen::MatrixXd Ui = modal_projection(cv.link, cv.x_B);  // Phi^T J^T
-      // The contact point's velocity in B: the base's, plus J q' = (Phi^T J^T)^T eta'.
-      const Eigen::Vector3d v_B =
-          R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + Ui.transpose() * rate;
-      // With a truncated basis the residual modes follow the force statically: the contact point gives way by
-      // C F, C = J R J^T = sum_j J_j^T K_j^-1 J_j - (Phi_m^T J^T)^T k^-1 (Phi_m^T J^T), in series with the law.
-      const Eigen::Matrix3d C = residual_compliance(cv.link, Ui);
-      // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n, for the
-      // stiffness k_n in series with the residual compliance n^T C n (the series law scales the force by
-      // 1 / (1 + k_n n^T C n), so the damper is taken that much larger).
-      const double inv_mass = (Ui * n).squaredNorm();
-      const double series_n = 1.0 + kn_ * std::max(0.0, n.dot(C * n));
-      const double cn =
-          2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / series_n / std::max(inv_mass, 1e-300)) * series_n;
-      const double gap_rate = n.dot(v_B);
-      const double fn_raw = -kn_ * cv.gap - cn * gap_rate;
-      const double fn = frozen_on ? fn_raw : std::max(0.0, fn_raw);
+      NormalForce nf = normal_force(f, cv, n, rate, frozen_on);
+      Eigen::MatrixXd& Ui = nf.Ui;
+      const Eigen::Vector3d& v_B = nf.v_B;
+      const Eigen::Matrix3d& C = nf.C;
+      const double fn = nf.fn;
       const double lambda = e_B.dot(rel);
       if (before.state == ContactState::none) cv.anchor = lambda;  // touches: sticks where it touched
       const double mu = ob.friction_coefficient;
       double ft = 0.0;
       Eigen::Vector3d b = e_B;  // the friction force's direction (below)
       if (fn > 0.0 || frozen_on) {
-        const bool damped = frozen_on || (fn_raw > 0.0 && cn * gap_rate != 0.0);
-        const Eigen::Vector3d dfn_dx = -kn_ * n, dfn_dv = damped ? Eigen::Vector3d(-cn * n) : Eigen::Vector3d::Zero();
+        const Eigen::Vector3d &dfn_dx = nf.dfn_dx, &dfn_dv = nf.dfn_dv;
         cv.S_x = n * dfn_dx.transpose();
         cv.S_v = n * dfn_dv.transpose();
         // Elastic-plastic friction, with the quasi-static frictional edge's law (spec §3.1; solve_frictional_edge):
@@ -333,6 +320,42 @@ class Integrator {
       modal_force.noalias() += Ui * cv.force_B;
       if (U) (*U)[o] = std::move(Ui);
     }
+  }
+
+  /// A contact's normal law at its point cv.x_B (on link cv.link, gap cv.gap) with normal n (in B): the penalty
+  /// and its damper (docs/dynamics.md, "Contacts"), with what the friction law and give_way need.
+  struct NormalForce {
+    Eigen::MatrixXd Ui;       ///< Phi^T J^T of the point
+    Eigen::Vector3d v_B;      ///< the point's velocity (world, in B axes)
+    Eigen::Matrix3d C;        ///< the residual compliance (zero with all modes)
+    double fn = 0.0;          ///< the normal force (>= 0 unless the contact set is frozen)
+    Eigen::Vector3d dfn_dx;   ///< its derivatives by the point's displacement and velocity
+    Eigen::Vector3d dfn_dv;
+  };
+  NormalForce normal_force(const Frame& f, const ContactValue& cv, const Eigen::Vector3d& n,
+                           const Eigen::VectorXd& rate, bool frozen_on) {
+    const Eigen::Matrix3d& R = f.base.R_WB;
+    NormalForce out;
+    out.Ui = modal_projection(cv.link, cv.x_B);
+    // The contact point's velocity in B: the base's, plus J q' = (Phi^T J^T)^T eta'.
+    out.v_B = R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + out.Ui.transpose() * rate;
+    // With a truncated basis the residual modes follow the force statically: the contact point gives way by
+    // C F, C = J R J^T = sum_j J_j^T K_j^-1 J_j - (Phi_m^T J^T)^T k^-1 (Phi_m^T J^T), in series with the law.
+    out.C = residual_compliance(cv.link, out.Ui);
+    // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n, for the
+    // stiffness k_n in series with the residual compliance n^T C n (the series law scales the force by
+    // 1 / (1 + k_n n^T C n), so the damper is taken that much larger).
+    const double inv_mass = (out.Ui * n).squaredNorm();
+    const double series_n = 1.0 + kn_ * std::max(0.0, n.dot(out.C * n));
+    const double cn =
+        2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / series_n / std::max(inv_mass, 1e-300)) * series_n;
+    const double gap_rate = n.dot(out.v_B);
+    const double fn_raw = -kn_ * cv.gap - cn * gap_rate;
+    out.fn = frozen_on ? fn_raw : std::max(0.0, fn_raw);
+    const bool damped = frozen_on || (fn_raw > 0.0 && cn * gap_rate != 0.0);
+    out.dfn_dx = -kn_ * n;
+    out.dfn_dv = damped ? Eigen::Vector3d(-cn * n) : Eigen::Vector3d::Zero();
+    return out;
   }
 
   /// Phi^T J^T of the point x_B on link `link` (the modal projection of a force there); J^T into Jt_ (its rows
@@ -429,18 +452,11 @@ class Integrator {
         if (!found[j].found || (frozen && !frozen_on)) continue;
         if (cv.gap >= 0.0 && !frozen_on) continue;
         const Eigen::Vector3d n = R.transpose() * c.surface.normal;
-        Eigen::MatrixXd Ui = modal_projection(cv.link, cv.x_B);
-        const Eigen::Vector3d v_B =
-            R.transpose() * (f.base.velocity_W + f.base.omega_W.cross(R * cv.x_B)) + Ui.transpose() * rate;
-        // Critical damping as the line's, in series with a truncated basis' residual compliance.
-        const Eigen::Matrix3d C = residual_compliance(cv.link, Ui);
-        const double inv_mass = (Ui * n).squaredNorm();
-        const double series_n = 1.0 + kn_ * std::max(0.0, n.dot(C * n));
-        const double cn =
-            2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / series_n / std::max(inv_mass, 1e-300)) * series_n;
-        const double gap_rate = n.dot(v_B);
-        const double fn_raw = -kn_ * cv.gap - cn * gap_rate;
-        const double fn = frozen_on ? fn_raw : std::max(0.0, fn_raw);
+        NormalForce nf = normal_force(f, cv, n, rate, frozen_on);  // as the line's
+        Eigen::MatrixXd& Ui = nf.Ui;
+        const Eigen::Vector3d& v_B = nf.v_B;
+        const Eigen::Matrix3d& C = nf.C;
+        const double fn = nf.fn;
         if (before.state == ContactState::none) cv.anchor_W = cv.point_W;  // touches: sticks where it touched
         if (!(fn > 0.0 || frozen_on)) {
           // Inside, but the damper pulls harder than the spring pushes: no force, still touching (as the line's).
@@ -448,8 +464,7 @@ class Integrator {
           cv.state = before.state != ContactState::none ? before.state : ContactState::slip;
           continue;
         }
-        const bool damped = frozen_on || (fn_raw > 0.0 && cn * gap_rate != 0.0);
-        const Eigen::Vector3d dfn_dx = -kn_ * n, dfn_dv = damped ? Eigen::Vector3d(-cn * n) : Eigen::Vector3d::Zero();
+        const Eigen::Vector3d &dfn_dx = nf.dfn_dx, &dfn_dv = nf.dfn_dv;
         cv.S_x = n * dfn_dx.transpose();
         cv.S_v = n * dfn_dv.transpose();
         // Friction's directions T (B): b = n x t across the whisker on its side; the tangent plane at the tip.
