@@ -401,13 +401,19 @@ def compare_fits(x, y, k):
     return float(np.sqrt(aa / bb)), float(np.sum(a * b) / np.sqrt(aa * bb))
 
 
-def cmd_air(args) -> int:
-    import vibrissa
-    output, inputs = pathlib.Path(args.whiskit_output), pathlib.Path(args.inputs)
-    params = inputs / "data" / "whisker_param_average_rat"
-    whiskit_names = [line.strip() for line in open(params / "param_name.csv")]
+def whiskit_parameters(inputs):
+    """The whisker parameters `inputs` wrote for WHISKiT: their folder, the names, side/row/column and (S, A)."""
+    params = pathlib.Path(inputs) / "data" / "whisker_param_average_rat"
+    names = [line.strip() for line in open(params / "param_name.csv")]
     row_col = np.genfromtxt(params / "param_side_row_col.csv", delimiter=",").astype(int)
     s_a = np.genfromtxt(params / "param_s_a.csv", delimiter=",")
+    return params, names, row_col, s_a
+
+
+def cmd_air(args) -> int:
+    import vibrissa
+    output = pathlib.Path(args.whiskit_output)
+    params, whiskit_names, row_col, s_a = whiskit_parameters(args.inputs)
     omega = np.genfromtxt(params / "whisking_trajectory.csv", delimiter=",")
     kinematics = array_kinematics()
     load = os.getloadavg()[0]
@@ -503,11 +509,8 @@ def cmd_air(args) -> int:
 
 def cmd_air_steady(args) -> int:
     """WHISKiT's saved force against Newton on its links, window by window, for a run on `inputs --steady-rate`."""
-    output, inputs = pathlib.Path(args.whiskit_output), pathlib.Path(args.inputs)
-    params = inputs / "data" / "whisker_param_average_rat"
-    whiskit_names = [line.strip() for line in open(params / "param_name.csv")]
-    row_col = np.genfromtxt(params / "param_side_row_col.csv", delimiter=",").astype(int)
-    s_a = np.genfromtxt(params / "param_s_a.csv", delimiter=",")
+    output = pathlib.Path(args.whiskit_output)
+    params, whiskit_names, row_col, s_a = whiskit_parameters(args.inputs)
     for name in args.names:
         wname = "R" + name[:-1]
         i = whiskit_names.index(wname)
