@@ -278,9 +278,7 @@ class Integrator {
         const double cone = c_line * c_line - mu * mu * (1.0 - c_line * c_line);
         const double ratio = cone > 0.0 ? mu / std::sqrt(cone) : std::numeric_limits<double>::infinity();
         const double limit = ratio * fn;
-        const double series_t = 1.0 + kt_ * std::max(0.0, b.dot(C * b));
-        const double ct = 2.0 * opt_.contact.damping_ratio *
-                          std::sqrt(kt_ / series_t / std::max((Ui * b).squaredNorm(), 1e-300)) * series_t;
+        const double ct = critical_damping(kt_, Ui, C, b);
         const double spring = -kt_ * c_line * (lambda - cv.anchor), damper = -ct * b.dot(v_B);
         const ContactState keep = frozen ? (*frozen)[o] : ContactState::none;
         const bool stick = keep != ContactState::none ? keep == ContactState::stick && frictional
@@ -322,6 +320,17 @@ class Integrator {
     }
   }
 
+  /// The damping coefficient of a contact spring k along the unit direction d (normal, or a friction direction):
+  /// `damping_ratio` times critical for the whisker's effective mass there, 1 / m_eff = d^T J M^-1 J^T d = |Ui d|^2,
+  /// for the spring in series with the residual compliance d^T C d (the series law scales the force by
+  /// 1 / (1 + k d^T C d), so the damper is taken that much larger; C is zero with all modes).
+  double critical_damping(double k, const Eigen::MatrixXd& Ui, const Eigen::Matrix3d& C,
+                          const Eigen::Vector3d& d) const {
+    const double series = 1.0 + k * std::max(0.0, d.dot(C * d));
+    return 2.0 * opt_.contact.damping_ratio * std::sqrt(k / series / std::max((Ui * d).squaredNorm(), 1e-300)) *
+           series;
+  }
+
   /// A contact's normal law at its point cv.x_B (on link cv.link, gap cv.gap) with normal n (in B): the penalty
   /// and its damper (docs/dynamics.md, "Contacts"), with what the friction law and give_way need.
   struct NormalForce {
@@ -342,13 +351,7 @@ class Integrator {
     // With a truncated basis the residual modes follow the force statically: the contact point gives way by
     // C F, C = J R J^T = sum_j J_j^T K_j^-1 J_j - (Phi_m^T J^T)^T k^-1 (Phi_m^T J^T), in series with the law.
     out.C = residual_compliance(cv.link, out.Ui);
-    // Critical damping of the effective mass at the contact along n: 1 / m_eff = n^T J M^-1 J^T n, for the
-    // stiffness k_n in series with the residual compliance n^T C n (the series law scales the force by
-    // 1 / (1 + k_n n^T C n), so the damper is taken that much larger).
-    const double inv_mass = (out.Ui * n).squaredNorm();
-    const double series_n = 1.0 + kn_ * std::max(0.0, n.dot(out.C * n));
-    const double cn =
-        2.0 * opt_.contact.damping_ratio * std::sqrt(kn_ / series_n / std::max(inv_mass, 1e-300)) * series_n;
+    const double cn = critical_damping(kn_, out.Ui, out.C, n);
     const double gap_rate = n.dot(out.v_B);
     const double fn_raw = -kn_ * cv.gap - cn * gap_rate;
     out.fn = frozen_on ? fn_raw : std::max(0.0, fn_raw);
@@ -487,7 +490,7 @@ class Integrator {
           const Eigen::VectorXd spring = -kt_ * (T.transpose() * (cv.x_B - anchor_B));
           Eigen::VectorXd ct(T.cols()), damper(T.cols());
           for (Eigen::Index k = 0; k < T.cols(); ++k) {
-            ct(k) = 2.0 * opt_.contact.damping_ratio * std::sqrt(kt_ / std::max((Ui * T.col(k)).squaredNorm(), 1e-300));
+            ct(k) = critical_damping(kt_, Ui, C, T.col(k));
             damper(k) = -ct(k) * T.col(k).dot(v_B);
           }
           const ContactState keep = frozen ? (*frozen)[o] : ContactState::none;

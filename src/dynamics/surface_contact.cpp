@@ -83,7 +83,8 @@ void surface_contacts(const PlacedShape& object, std::span<const Eigen::Vector3d
             [](const SurfaceCandidate& a, const SurfaceCandidate& b) { return a.gap < b.gap; });
   if (places.size() > slots.size()) places.resize(slots.size());
   for (SurfaceCandidate& s : slots) s = SurfaceCandidate{};
-  std::vector<char> taken(places.size(), 0);
+  thread_local std::vector<char> taken;
+  taken.assign(places.size(), 0);
   // Slots in contact before continue with the place nearest along the whisker.
   for (std::size_t k = 0; k < slots.size(); ++k) {
     if (!std::isfinite(previous_arc[k])) continue;
